@@ -1,0 +1,297 @@
+//! The renderer's side of the contract: [`ShadingContext`] (globals, `illuminance`,
+//! `ambient`, `trace`), the outputs of surface and light shaders, and [`PointContext`], a
+//! complete context for shading points that are not part of a scene (tests, benchmarks,
+//! `testshade`-style evaluation).
+
+use crate::exec::Exec;
+use crate::float::{Blend, Mask, ShadingFloat};
+use crate::shader::LightShader;
+use crate::vec::{Color, Vec3};
+
+/// The RSL global variables of a surface shading point, named as in RSL.
+#[allow(non_snake_case)]
+#[derive(Clone, Copy, Debug)]
+pub struct Globals<F> {
+    /// Surface position.
+    pub P: Vec3<F>,
+    /// Shading normal.
+    pub N: Vec3<F>,
+    /// Geometric normal.
+    pub Ng: Vec3<F>,
+    /// Incident ray direction (from the eye to P, not normalized).
+    pub I: Vec3<F>,
+    /// Eye position.
+    pub E: Vec3<F>,
+    /// Texture coordinate s.
+    pub s: F,
+    /// Texture coordinate t.
+    pub t: F,
+    /// Surface parameter u.
+    pub u: F,
+    /// Surface parameter v.
+    pub v: F,
+    /// Change in u between adjacent samples.
+    pub du: F,
+    /// Change in v between adjacent samples.
+    pub dv: F,
+    /// ∂P/∂u.
+    pub dPdu: Vec3<F>,
+    /// ∂P/∂v.
+    pub dPdv: Vec3<F>,
+    /// Surface colour.
+    pub Cs: Color<F>,
+    /// Surface opacity.
+    pub Os: Color<F>,
+}
+
+impl<F: ShadingFloat> Globals<F> {
+    /// A unit square in the z = 0 plane facing a camera at (0, 0, 1): the default point set of
+    /// `testshade`-style evaluation. `s`, `t`, `u`, `v` are taken from `(u, v)`.
+    #[must_use]
+    pub fn unit_square(u: F, v: F) -> Self {
+        let zero = F::c(0.0);
+        let one = F::c(1.0);
+        let p = Vec3::new(u - F::c(0.5), v - F::c(0.5), zero);
+        let e = Vec3::c(0.0, 0.0, 1.0);
+        Self {
+            P: p,
+            N: Vec3::c(0.0, 0.0, 1.0),
+            Ng: Vec3::c(0.0, 0.0, 1.0),
+            I: p - e,
+            E: e,
+            s: u,
+            t: v,
+            u,
+            v,
+            du: F::c(0.0),
+            dv: F::c(0.0),
+            dPdu: Vec3::new(one, zero, zero),
+            dPdv: Vec3::new(zero, one, zero),
+            Cs: Color::c(1.0, 1.0, 1.0),
+            Os: Color::c(1.0, 1.0, 1.0),
+        }
+    }
+}
+
+impl<F: ShadingFloat> Blend<F> for Globals<F> {
+    fn blend(m: F::Mask, a: Self, b: Self) -> Self {
+        Self {
+            P: Blend::blend(m, a.P, b.P),
+            N: Blend::blend(m, a.N, b.N),
+            Ng: Blend::blend(m, a.Ng, b.Ng),
+            I: Blend::blend(m, a.I, b.I),
+            E: Blend::blend(m, a.E, b.E),
+            s: F::select(m, a.s, b.s),
+            t: F::select(m, a.t, b.t),
+            u: F::select(m, a.u, b.u),
+            v: F::select(m, a.v, b.v),
+            du: F::select(m, a.du, b.du),
+            dv: F::select(m, a.dv, b.dv),
+            dPdu: Blend::blend(m, a.dPdu, b.dPdu),
+            dPdv: Blend::blend(m, a.dPdv, b.dPdv),
+            Cs: Blend::blend(m, a.Cs, b.Cs),
+            Os: Blend::blend(m, a.Os, b.Os),
+        }
+    }
+}
+
+/// What a surface shader writes: RSL `Ci` and `Oi`.
+#[allow(non_snake_case)]
+#[derive(Clone, Copy, Debug)]
+pub struct SurfaceOutput<F> {
+    /// Outgoing colour (premultiplied by opacity, as RSL shaders write it).
+    pub Ci: Color<F>,
+    /// Opacity.
+    pub Oi: Color<F>,
+}
+
+impl<F: ShadingFloat> Blend<F> for SurfaceOutput<F> {
+    fn blend(m: F::Mask, a: Self, b: Self) -> Self {
+        Self { Ci: Blend::blend(m, a.Ci, b.Ci), Oi: Blend::blend(m, a.Oi, b.Oi) }
+    }
+    fn widen(self) -> Self {
+        Self { Ci: self.Ci.widen(), Oi: self.Oi.widen() }
+    }
+}
+
+/// How a light reaches a surface.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Emission {
+    /// No direction: contributes to `ambient()` only.
+    Ambient,
+    /// From a point (`illuminate`): shadow rays stop at the light.
+    Local,
+    /// From a direction (`solar`): shadow rays go to infinity.
+    Distant,
+}
+
+/// What a light shader computes for a set of surface points.
+#[derive(Clone, Copy, Debug)]
+pub struct LightOutput<F: ShadingFloat> {
+    /// Light colour arriving at the point (RSL `Cl`).
+    pub cl: Color<F>,
+    /// RSL `L` inside the light shader: from the light towards the surface point (for
+    /// distant lights, the direction the light travels).
+    pub l: Vec3<F>,
+    /// Lanes the light illuminates (inside its cone).
+    pub lit: F::Mask,
+    /// How the light arrives.
+    pub emission: Emission,
+}
+
+/// RSL `illuminate(from [, axis, angle])`: `L = ps - from`, and the lanes inside the cone
+/// of half-angle `angle` around `axis`.
+#[inline(always)]
+pub fn illuminate<F: ShadingFloat>(ps: Vec3<F>, from: Vec3<F>, cone: Option<(Vec3<F>, F)>) -> (Vec3<F>, F::Mask) {
+    let l = ps - from;
+    let lit = match cone {
+        None => F::Mask::splat(true),
+        Some((axis, angle)) => in_cone(l, axis, angle),
+    };
+    (l, lit)
+}
+
+/// RSL `solar([axis, angle])`: light travelling along `axis`; lanes always lit.
+#[inline(always)]
+pub fn solar<F: ShadingFloat>(axis: Vec3<F>) -> (Vec3<F>, F::Mask) {
+    (axis, F::Mask::splat(true))
+}
+
+/// Lanes where the angle between `dir` and `axis` is at most `angle` (an angle ≥ π admits
+/// everything, including zero-length `dir`).
+#[inline(always)]
+pub fn in_cone<F: ShadingFloat>(dir: Vec3<F>, axis: Vec3<F>, angle: F) -> F::Mask {
+    let cosang = angle.min(F::c(core::f64::consts::PI)).cos();
+    let d = dir.dot(axis);
+    let len = (dir.length_squared() * axis.length_squared()).sqrt();
+    d.ge(cosang * len) | angle.ge(F::c(core::f64::consts::PI))
+}
+
+/// The renderer's side of shading: globals and the constructs that need the scene.
+pub trait ShadingContext<F: ShadingFloat> {
+    /// The RSL globals of the points being shaded.
+    fn globals(&self) -> &Globals<F>;
+
+    /// RSL `illuminance([category,] p [, axis, angle]) { body }`: runs `body(e, L, Cl)` once per
+    /// non-ambient light with the mask narrowed to the lanes the light reaches (inside the
+    /// cone, not in shadow). `L` points from `p` to the light, unnormalized.
+    fn illuminance<B: FnMut(&mut Exec<F>, Vec3<F>, Color<F>)>(
+        &mut self,
+        e: &mut Exec<F>,
+        category: &str,
+        p: Vec3<F>,
+        cone: Option<(Vec3<F>, F)>,
+        body: B,
+    );
+
+    /// RSL `ambient()`: the sum of the ambient lights.
+    fn ambient(&mut self, e: &Exec<F>) -> Color<F>;
+
+    /// RSL `trace(p, dir)`: the colour seen along a ray, for the live lanes.
+    fn trace(&mut self, e: &Exec<F>, p: Vec3<F>, dir: Vec3<F>) -> Color<F>;
+}
+
+/// The light loop every context shares: evaluates each light shader at `p`, keeps the lanes
+/// inside the illuminance cone, asks `visibility` for shadowing (`None` = unshadowed) and runs
+/// `body` with `L` reversed to point from the surface to the light.
+#[inline(always)]
+pub fn run_illuminance<F, L, V, B>(
+    lights: &[L],
+    e: &mut Exec<F>,
+    p: Vec3<F>,
+    cone: Option<(Vec3<F>, F)>,
+    mut visibility: V,
+    mut body: B,
+) where
+    F: ShadingFloat,
+    L: LightShader,
+    V: FnMut(F::Mask, Vec3<F>, &LightOutput<F>) -> Option<Color<F>>,
+    B: FnMut(&mut Exec<F>, Vec3<F>, Color<F>),
+{
+    for light in lights {
+        let out = light.light(e, p);
+        if out.emission == Emission::Ambient {
+            continue;
+        }
+        let to_light = -out.l;
+        let mut mask = e.mask() & out.lit;
+        if let Some((axis, angle)) = cone {
+            mask = mask & in_cone(to_light, axis, angle);
+        }
+        if mask.none() {
+            continue;
+        }
+        let cl = match visibility(mask, p, &out) {
+            Some(v) => out.cl * v,
+            None => out.cl,
+        };
+        e.masked(mask, |e| body(e, to_light, cl));
+    }
+}
+
+/// The sum of the ambient lights' `Cl` at `p`.
+#[inline(always)]
+pub fn sum_ambient<F: ShadingFloat, L: LightShader>(lights: &[L], e: &Exec<F>, p: Vec3<F>) -> Color<F> {
+    let mut sum = Color::zero();
+    for light in lights {
+        let mut le = *e;
+        let out = light.light(&mut le, p);
+        if out.emission == Emission::Ambient {
+            sum += Color::select(out.lit, out.cl, Color::zero());
+        }
+    }
+    sum
+}
+
+/// A complete [`ShadingContext`] for points outside a scene: lights without shadows and a
+/// constant environment colour seen by `trace`. Used by tests, kernel benchmarks and
+/// `rslc eval`.
+pub struct PointContext<'a, F: ShadingFloat, L> {
+    /// The points being shaded.
+    pub globals: Globals<F>,
+    /// The lights.
+    pub lights: &'a [L],
+    /// What `trace` returns: a vertical gradient from `horizon` (dir.y = 0) to `zenith`.
+    pub horizon: Color<F>,
+    /// See `horizon`.
+    pub zenith: Color<F>,
+}
+
+impl<'a, F: ShadingFloat, L: LightShader> PointContext<'a, F, L> {
+    /// A context with the default sky (horizon 0.6, zenith (0.2, 0.3, 0.8)).
+    #[must_use]
+    pub fn new(globals: Globals<F>, lights: &'a [L]) -> Self {
+        Self { globals, lights, horizon: Color::c(0.6, 0.6, 0.6), zenith: Color::c(0.2, 0.3, 0.8) }
+    }
+}
+
+impl<F: ShadingFloat, L: LightShader> ShadingContext<F> for PointContext<'_, F, L> {
+    #[inline(always)]
+    fn globals(&self) -> &Globals<F> {
+        &self.globals
+    }
+
+    #[inline(always)]
+    fn illuminance<B: FnMut(&mut Exec<F>, Vec3<F>, Color<F>)>(
+        &mut self,
+        e: &mut Exec<F>,
+        _category: &str,
+        p: Vec3<F>,
+        cone: Option<(Vec3<F>, F)>,
+        body: B,
+    ) {
+        run_illuminance(self.lights, e, p, cone, |_, _, _| None, body);
+    }
+
+    #[inline(always)]
+    fn ambient(&mut self, e: &Exec<F>) -> Color<F> {
+        sum_ambient(self.lights, e, self.globals.P)
+    }
+
+    #[inline(always)]
+    fn trace(&mut self, _e: &Exec<F>, _p: Vec3<F>, dir: Vec3<F>) -> Color<F> {
+        let d = dir.normalize();
+        let t = d.y.abs().min(F::c(1.0));
+        self.horizon + (self.zenith - self.horizon) * t
+    }
+}

@@ -1,0 +1,456 @@
+//! The abstract number types every shader is written against: [`ShadingFloat`], its
+//! [`Mask`] and the integer lanes [`LatticeBits`] behind the noise hash.
+//!
+//! A type implementing `ShadingFloat` is a *set of shading points* evaluated together:
+//! one (`f32`, `f64`), several SIMD lanes (`F32x8`), a value with screen-space derivatives
+//! (`Dual<F>`) or a conservative range (`Interval<F>`). Shaders never see which.
+
+use core::fmt::Debug;
+use core::ops::{
+    Add, AddAssign, BitAnd, BitOr, BitXor, Div, DivAssign, Mul, MulAssign, Neg, Not, Shl, Shr,
+    Sub, SubAssign,
+};
+
+/// The result of comparing two [`ShadingFloat`]s: one truth value per lane.
+///
+/// For intervals the truth value is three-valued ("surely true", "surely false", "maybe"):
+/// [`Mask::any`] then means *possibly true in some lane* and [`Mask::all`] *surely true in
+/// every lane*, which is what masked control flow needs to stay conservative.
+pub trait Mask:
+    Copy
+    + Debug
+    + Send
+    + Sync
+    + 'static
+    + BitAnd<Output = Self>
+    + BitOr<Output = Self>
+    + Not<Output = Self>
+{
+    /// Number of lanes.
+    const LANES: usize;
+    /// True when the mask can hold "maybe" (interval masks); loops then widen after a bound.
+    const THREE_VALUED: bool = false;
+    /// Every lane set to `b`.
+    fn splat(b: bool) -> Self;
+    /// Some lane is (possibly) true.
+    fn any(self) -> bool;
+    /// Every lane is (surely) true.
+    fn all(self) -> bool;
+    /// No lane is (possibly) true.
+    #[inline(always)]
+    fn none(self) -> bool {
+        !self.any()
+    }
+    /// Lane `i` is (possibly) true.
+    fn lane(self, i: usize) -> bool;
+    /// Lane-wise choice between two masks.
+    #[inline(always)]
+    fn select_mask(m: Self, a: Self, b: Self) -> Self {
+        (m & a) | (!m & b)
+    }
+}
+
+impl Mask for bool {
+    const LANES: usize = 1;
+    #[inline(always)]
+    fn splat(b: bool) -> Self {
+        b
+    }
+    #[inline(always)]
+    fn any(self) -> bool {
+        self
+    }
+    #[inline(always)]
+    fn all(self) -> bool {
+        self
+    }
+    #[inline(always)]
+    fn lane(self, _i: usize) -> bool {
+        self
+    }
+    #[inline(always)]
+    fn select_mask(m: Self, a: Self, b: Self) -> Self {
+        if m {
+            a
+        } else {
+            b
+        }
+    }
+}
+
+/// Unsigned 32-bit integer lanes: the integer side of a [`ShadingFloat`], used by the
+/// table-free lattice hash behind noise. `+` and `*` wrap modulo 2^32.
+pub trait LatticeBits:
+    Copy
+    + Debug
+    + Send
+    + Sync
+    + 'static
+    + BitAnd<Output = Self>
+    + BitOr<Output = Self>
+    + BitXor<Output = Self>
+    + Shr<u32, Output = Self>
+    + Shl<u32, Output = Self>
+{
+    /// The mask type produced by comparisons.
+    type Mask: Mask;
+    /// Every lane set to `v`.
+    fn splat(v: u32) -> Self;
+    /// Lane-wise wrapping addition.
+    fn wrapping_add(self, rhs: Self) -> Self;
+    /// Lane-wise wrapping multiplication.
+    fn wrapping_mul(self, rhs: Self) -> Self;
+    /// Lane-wise equality.
+    fn eq_mask(self, rhs: Self) -> Self::Mask;
+    /// Lane `i` (for tests and debugging; for unknown interval bits, the stored guess).
+    fn lane(self, i: usize) -> u32;
+}
+
+impl LatticeBits for u32 {
+    type Mask = bool;
+    #[inline(always)]
+    fn splat(v: u32) -> Self {
+        v
+    }
+    #[inline(always)]
+    fn wrapping_add(self, rhs: Self) -> Self {
+        u32::wrapping_add(self, rhs)
+    }
+    #[inline(always)]
+    fn wrapping_mul(self, rhs: Self) -> Self {
+        u32::wrapping_mul(self, rhs)
+    }
+    #[inline(always)]
+    fn eq_mask(self, rhs: Self) -> bool {
+        self == rhs
+    }
+    #[inline(always)]
+    fn lane(self, _i: usize) -> u32 {
+        self
+    }
+}
+
+/// Lane-wise choice for anything a masked assignment can write: floats, vectors, colours,
+/// matrices, tuples and arrays of them. `widen` forgets everything known about the value
+/// (only intervals do anything: they become unbounded); loops over intervals use it once
+/// they stop converging.
+pub trait Blend<F: ShadingFloat>: Copy {
+    /// `m ? a : b`, lane by lane. For a "maybe" interval lane, the hull of both.
+    fn blend(m: F::Mask, a: Self, b: Self) -> Self;
+    /// The value with nothing known about it (identity except for intervals).
+    #[inline(always)]
+    fn widen(self) -> Self {
+        self
+    }
+}
+
+/// The number type a shader is written against. See the module docs.
+///
+/// Constants enter through [`ShadingFloat::c`] (converted to the type's precision once,
+/// after inlining a constant). Comparisons return [`Self::Mask`]; use [`ShadingFloat::select`]
+/// (or the masked control flow of [`crate::exec`]) instead of `if`.
+///
+/// The math functions are *primitives*: each instantiation supplies them (scalar libm, SIMD
+/// polynomials, dual-number chain rule, outward-rounded interval hulls); everything else in
+/// the shading library is written once on top of them.
+pub trait ShadingFloat:
+    Copy
+    + Debug
+    + Send
+    + Sync
+    + 'static
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Div<Output = Self>
+    + Neg<Output = Self>
+    + AddAssign
+    + SubAssign
+    + MulAssign
+    + DivAssign
+    + Blend<Self>
+{
+    /// Lane truth values produced by comparisons.
+    type Mask: Mask;
+    /// Integer lanes for the noise hash.
+    type Bits: LatticeBits<Mask = Self::Mask>;
+    /// Number of lanes (shading points) evaluated at once.
+    const LANES: usize;
+    /// True for dual numbers: derivatives are carried and `dx`/`dy` are meaningful.
+    const HAS_DERIVS: bool = false;
+    /// Unit roundoff of the underlying precision (2^-24 for f32, 2^-53 for f64).
+    const UNIT_ROUNDOFF: f64;
+    /// Short name used in benchmark tables (`f32`, `f32x8`, `dual-f32`, …).
+    const NAME: &'static str;
+
+    /// The constant `v` in every lane, rounded to this type's precision.
+    fn c(v: f64) -> Self;
+    /// Lane `i` as f64 (the value part for duals, the midpoint for intervals).
+    fn lane(self, i: usize) -> f64;
+    /// Builds a value from per-lane f64 values (`lanes.len() == LANES`).
+    fn from_lanes(lanes: &[f64]) -> Self;
+
+    /// `m ? a : b` lane by lane.
+    fn select(m: Self::Mask, a: Self, b: Self) -> Self;
+    /// `self < rhs`.
+    fn lt(self, rhs: Self) -> Self::Mask;
+    /// `self <= rhs`.
+    fn le(self, rhs: Self) -> Self::Mask;
+    /// `self > rhs`.
+    #[inline(always)]
+    fn gt(self, rhs: Self) -> Self::Mask {
+        rhs.lt(self)
+    }
+    /// `self >= rhs`.
+    #[inline(always)]
+    fn ge(self, rhs: Self) -> Self::Mask {
+        rhs.le(self)
+    }
+    /// `self == rhs`.
+    fn eq(self, rhs: Self) -> Self::Mask;
+    /// `self != rhs`.
+    #[inline(always)]
+    fn ne(self, rhs: Self) -> Self::Mask {
+        !self.eq(rhs)
+    }
+    /// Lanes holding NaN.
+    fn is_nan(self) -> Self::Mask;
+
+    /// |x|.
+    fn abs(self) -> Self;
+    /// Largest integer ≤ x.
+    fn floor(self) -> Self;
+    /// Smallest integer ≥ x.
+    fn ceil(self) -> Self;
+    /// Nearest integer, halves away from zero (RSL `round`).
+    fn round(self) -> Self;
+    /// Integer part, toward zero.
+    fn trunc(self) -> Self;
+    /// Lane-wise minimum (a NaN operand yields the other operand).
+    fn min(self, rhs: Self) -> Self;
+    /// Lane-wise maximum (a NaN operand yields the other operand).
+    fn max(self, rhs: Self) -> Self;
+    /// √x (NaN for x < 0).
+    fn sqrt(self) -> Self;
+    /// e^x.
+    fn exp(self) -> Self;
+    /// 2^x.
+    fn exp2(self) -> Self;
+    /// Natural logarithm.
+    fn ln(self) -> Self;
+    /// Base-2 logarithm.
+    fn log2(self) -> Self;
+    /// x^y for x ≥ 0 (RSL `pow`); `pow(0, y>0) = 0`; a negative base gives NaN unless y is
+    /// an integer (then the sign follows the parity of y), as C `pow` does.
+    fn pow(self, y: Self) -> Self;
+    /// sin x.
+    fn sin(self) -> Self;
+    /// cos x.
+    fn cos(self) -> Self;
+    /// tan x.
+    fn tan(self) -> Self;
+    /// asin x (NaN outside [-1, 1]).
+    fn asin(self) -> Self;
+    /// acos x (NaN outside [-1, 1]).
+    fn acos(self) -> Self;
+    /// atan x.
+    fn atan(self) -> Self;
+    /// atan2(y = self, x).
+    fn atan2(self, x: Self) -> Self;
+
+    /// The two's-complement bit pattern of `(i32) floor(self)` (the lattice coordinate of the
+    /// noise hash). Values outside the i32 range saturate.
+    fn floor_bits(self) -> Self::Bits;
+    /// `(h >> 8) · 2^-24`: the top 24 hash bits as a number in [0, 1), exact in f32.
+    fn bits_to_unit(h: Self::Bits) -> Self;
+    /// Converts integer lanes to floats (`(i32) h` as a float).
+    fn bits_to_float_signed(h: Self::Bits) -> Self;
+
+    /// Screen-space derivative ∂/∂x (zero unless [`Self::HAS_DERIVS`]).
+    #[inline(always)]
+    fn dx(self) -> Self {
+        Self::c(0.0)
+    }
+    /// Screen-space derivative ∂/∂y (zero unless [`Self::HAS_DERIVS`]).
+    #[inline(always)]
+    fn dy(self) -> Self {
+        Self::c(0.0)
+    }
+    /// The value with its derivatives dropped (identity unless [`Self::HAS_DERIVS`]).
+    #[inline(always)]
+    fn value(self) -> Self {
+        self
+    }
+    /// The value with derivatives set to `(dx, dy)` (ignored unless [`Self::HAS_DERIVS`]).
+    #[inline(always)]
+    fn with_derivs(self, _dx: Self, _dy: Self) -> Self {
+        self
+    }
+    /// Lower bound in lane `i` (the value itself for point types).
+    #[inline(always)]
+    fn lower(self, i: usize) -> f64 {
+        self.lane(i)
+    }
+    /// Upper bound in lane `i` (the value itself for point types).
+    #[inline(always)]
+    fn upper(self, i: usize) -> f64 {
+        self.lane(i)
+    }
+}
+
+macro_rules! impl_scalar_float {
+    ($t:ident, $name:literal, $roundoff:expr) => {
+        impl Blend<$t> for $t {
+            #[inline(always)]
+            fn blend(m: bool, a: Self, b: Self) -> Self {
+                if m {
+                    a
+                } else {
+                    b
+                }
+            }
+        }
+
+        impl ShadingFloat for $t {
+            type Mask = bool;
+            type Bits = u32;
+            const LANES: usize = 1;
+            const UNIT_ROUNDOFF: f64 = $roundoff;
+            const NAME: &'static str = $name;
+
+            #[inline(always)]
+            fn c(v: f64) -> Self {
+                v as $t
+            }
+            #[inline(always)]
+            fn lane(self, _i: usize) -> f64 {
+                self as f64
+            }
+            #[inline(always)]
+            fn from_lanes(lanes: &[f64]) -> Self {
+                lanes[0] as $t
+            }
+            #[inline(always)]
+            fn select(m: bool, a: Self, b: Self) -> Self {
+                if m {
+                    a
+                } else {
+                    b
+                }
+            }
+            #[inline(always)]
+            fn lt(self, rhs: Self) -> bool {
+                self < rhs
+            }
+            #[inline(always)]
+            fn le(self, rhs: Self) -> bool {
+                self <= rhs
+            }
+            #[inline(always)]
+            fn eq(self, rhs: Self) -> bool {
+                self == rhs
+            }
+            #[inline(always)]
+            fn is_nan(self) -> bool {
+                <$t>::is_nan(self)
+            }
+            #[inline(always)]
+            fn abs(self) -> Self {
+                <$t>::abs(self)
+            }
+            #[inline(always)]
+            fn floor(self) -> Self {
+                <$t>::floor(self)
+            }
+            #[inline(always)]
+            fn ceil(self) -> Self {
+                <$t>::ceil(self)
+            }
+            #[inline(always)]
+            fn round(self) -> Self {
+                <$t>::round(self)
+            }
+            #[inline(always)]
+            fn trunc(self) -> Self {
+                <$t>::trunc(self)
+            }
+            #[inline(always)]
+            fn min(self, rhs: Self) -> Self {
+                <$t>::min(self, rhs)
+            }
+            #[inline(always)]
+            fn max(self, rhs: Self) -> Self {
+                <$t>::max(self, rhs)
+            }
+            #[inline(always)]
+            fn sqrt(self) -> Self {
+                <$t>::sqrt(self)
+            }
+            #[inline(always)]
+            fn exp(self) -> Self {
+                <$t>::exp(self)
+            }
+            #[inline(always)]
+            fn exp2(self) -> Self {
+                <$t>::exp2(self)
+            }
+            #[inline(always)]
+            fn ln(self) -> Self {
+                <$t>::ln(self)
+            }
+            #[inline(always)]
+            fn log2(self) -> Self {
+                <$t>::log2(self)
+            }
+            #[inline(always)]
+            fn pow(self, y: Self) -> Self {
+                <$t>::powf(self, y)
+            }
+            #[inline(always)]
+            fn sin(self) -> Self {
+                <$t>::sin(self)
+            }
+            #[inline(always)]
+            fn cos(self) -> Self {
+                <$t>::cos(self)
+            }
+            #[inline(always)]
+            fn tan(self) -> Self {
+                <$t>::tan(self)
+            }
+            #[inline(always)]
+            fn asin(self) -> Self {
+                <$t>::asin(self)
+            }
+            #[inline(always)]
+            fn acos(self) -> Self {
+                <$t>::acos(self)
+            }
+            #[inline(always)]
+            fn atan(self) -> Self {
+                <$t>::atan(self)
+            }
+            #[inline(always)]
+            fn atan2(self, x: Self) -> Self {
+                <$t>::atan2(self, x)
+            }
+            #[inline(always)]
+            fn floor_bits(self) -> u32 {
+                // `as` saturates out-of-range values and maps NaN to 0.
+                (<$t>::floor(self) as i32) as u32
+            }
+            #[inline(always)]
+            fn bits_to_unit(h: u32) -> Self {
+                // The top 24 bits, so that every precision gives the same exact value.
+                ((h >> 8) as f64 * (1.0 / 16777216.0)) as $t
+            }
+            #[inline(always)]
+            fn bits_to_float_signed(h: u32) -> Self {
+                (h as i32) as $t
+            }
+        }
+    };
+}
+
+impl_scalar_float!(f32, "f32", 5.960464477539063e-8);
+impl_scalar_float!(f64, "f64", 1.1102230246251565e-16);

@@ -1,0 +1,446 @@
+//! Shader traits and parameter metadata (name, type, default, uniform/varying, output), with
+//! setting parameters by name — the same for shaders written in Rust and loaded from `.sl`.
+
+use crate::context::{LightOutput, ShadingContext, SurfaceOutput};
+use crate::exec::Exec;
+use crate::float::ShadingFloat;
+use crate::vec::Vec3;
+use core::fmt;
+
+/// The kind of a shader (RenderMan Interface 3.2 shader types).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum ShaderKind {
+    /// Computes Ci/Oi at a surface point.
+    Surface,
+    /// Computes Cl/L for a light source.
+    Light,
+    /// Moves P / changes N before shading.
+    Displacement,
+    /// Attenuates along a ray.
+    Volume,
+    /// Post-processes pixels.
+    Imager,
+}
+
+impl ShaderKind {
+    /// The RSL keyword.
+    #[must_use]
+    pub fn keyword(self) -> &'static str {
+        match self {
+            Self::Surface => "surface",
+            Self::Light => "light",
+            Self::Displacement => "displacement",
+            Self::Volume => "volume",
+            Self::Imager => "imager",
+        }
+    }
+}
+
+/// The RSL type of a parameter.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum ParamType {
+    /// `float`.
+    Float,
+    /// `color`.
+    Color,
+    /// `point`.
+    Point,
+    /// `vector`.
+    Vector,
+    /// `normal`.
+    Normal,
+    /// `string`.
+    String,
+    /// `matrix`.
+    Matrix,
+}
+
+impl ParamType {
+    /// The RSL keyword.
+    #[must_use]
+    pub fn keyword(self) -> &'static str {
+        match self {
+            Self::Float => "float",
+            Self::Color => "color",
+            Self::Point => "point",
+            Self::Vector => "vector",
+            Self::Normal => "normal",
+            Self::String => "string",
+            Self::Matrix => "matrix",
+        }
+    }
+    /// True for color/point/vector/normal.
+    #[must_use]
+    pub fn is_triple(self) -> bool {
+        matches!(self, Self::Color | Self::Point | Self::Vector | Self::Normal)
+    }
+}
+
+/// `uniform` (one value for all shading points) or `varying` (one per point).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Storage {
+    /// Same value for every shading point of a shader instance.
+    Uniform,
+    /// May differ per shading point.
+    Varying,
+}
+
+/// A parameter value.
+#[derive(Clone, Debug, PartialEq)]
+pub enum ParamValue {
+    /// A float.
+    Float(f64),
+    /// A color, point, vector or normal.
+    Triple([f64; 3]),
+    /// A string.
+    String(String),
+    /// A matrix in row order.
+    Matrix([f64; 16]),
+    /// A fixed-length array.
+    Array(Vec<ParamValue>),
+}
+
+impl fmt::Display for ParamValue {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::Float(v) => write!(f, "{v}"),
+            Self::Triple([a, b, c]) => write!(f, "({a}, {b}, {c})"),
+            Self::String(s) => write!(f, "{s:?}"),
+            Self::Matrix(m) => {
+                write!(f, "matrix(")?;
+                for (i, v) in m.iter().enumerate() {
+                    if i > 0 {
+                        write!(f, ", ")?;
+                    }
+                    write!(f, "{v}")?;
+                }
+                write!(f, ")")
+            }
+            Self::Array(items) => {
+                write!(f, "{{")?;
+                for (i, v) in items.iter().enumerate() {
+                    if i > 0 {
+                        write!(f, ", ")?;
+                    }
+                    write!(f, "{v}")?;
+                }
+                write!(f, "}}")
+            }
+        }
+    }
+}
+
+impl ParamValue {
+    /// Parses a value of type `ty` from command-line text: `0.3`, `1,0.5,0.2`, `[1 0.5 0.2]`,
+    /// a string as is, or 16 numbers for a matrix. A single number is promoted to a triple
+    /// (as RSL promotes float to color). The error names what was expected.
+    pub fn parse(ty: ParamType, text: &str) -> Result<Self, String> {
+        if ty == ParamType::String {
+            return Ok(Self::String(text.trim_matches('"').to_string()));
+        }
+        let cleaned: String =
+            text.chars().map(|c| if matches!(c, '[' | ']' | '(' | ')' | ',') { ' ' } else { c }).collect();
+        let nums: Result<Vec<f64>, _> = cleaned.split_whitespace().map(str::parse::<f64>).collect();
+        let nums = nums.map_err(|_| format!("expected a {} value, got {text:?}", ty.keyword()))?;
+        match (ty, nums.len()) {
+            (ParamType::Float, 1) => Ok(Self::Float(nums[0])),
+            (t, 1) if t.is_triple() => Ok(Self::Triple([nums[0]; 3])),
+            (t, 3) if t.is_triple() => Ok(Self::Triple([nums[0], nums[1], nums[2]])),
+            (ParamType::Matrix, 1) => {
+                let mut m = [0.0; 16];
+                for i in 0..4 {
+                    m[i * 5] = nums[0];
+                }
+                Ok(Self::Matrix(m))
+            }
+            (ParamType::Matrix, 16) => Ok(Self::Matrix(nums.try_into().expect("16 numbers"))),
+            (t, n) => Err(format!(
+                "expected {} for a {} parameter, got {n} number(s) in {text:?}",
+                match t {
+                    ParamType::Float => "1 number",
+                    ParamType::Matrix => "1 or 16 numbers",
+                    _ => "1 or 3 numbers",
+                },
+                t.keyword()
+            )),
+        }
+    }
+}
+
+/// Metadata of one parameter.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ParamInfo {
+    /// Name as written in the shader.
+    pub name: String,
+    /// RSL type.
+    pub ty: ParamType,
+    /// Array length, if the parameter is an array.
+    pub array_len: Option<usize>,
+    /// Default value (evaluated to a constant).
+    pub default: ParamValue,
+    /// `uniform` or `varying`.
+    pub storage: Storage,
+    /// True for `output` parameters (written by the shader).
+    pub output: bool,
+}
+
+/// Metadata of a shader: what `sloinfo` prints.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ShaderMeta {
+    /// Shader name.
+    pub name: String,
+    /// Shader kind.
+    pub kind: ShaderKind,
+    /// Parameters in declaration order.
+    pub params: Vec<ParamInfo>,
+    /// True when the shader asks for derivatives (Du, Dv, Deriv, area, filterwidth,
+    /// calculatenormal, filterstep, …), so renderers know to shade with dual numbers.
+    pub uses_derivatives: bool,
+}
+
+impl ShaderMeta {
+    /// The parameter called `name`.
+    #[must_use]
+    pub fn param(&self, name: &str) -> Option<&ParamInfo> {
+        self.params.iter().find(|p| p.name == name)
+    }
+}
+
+/// Why setting a parameter failed.
+#[derive(Clone, Debug, PartialEq)]
+pub enum ParamError {
+    /// No parameter of that name; lists the ones that exist.
+    Unknown {
+        /// Shader name.
+        shader: String,
+        /// The name asked for.
+        name: String,
+        /// Parameters the shader has.
+        known: Vec<String>,
+    },
+    /// The value does not fit the parameter's type.
+    Type {
+        /// Parameter name.
+        name: String,
+        /// Expected type.
+        expected: ParamType,
+        /// What was given.
+        got: ParamValue,
+    },
+}
+
+impl fmt::Display for ParamError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::Unknown { shader, name, known } => {
+                write!(f, "shader '{shader}' has no parameter '{name}' (parameters: {})", known.join(", "))
+            }
+            Self::Type { name, expected, got } => {
+                write!(f, "parameter '{name}' is a {}, cannot take {got}", expected.keyword())
+            }
+        }
+    }
+}
+
+impl std::error::Error for ParamError {}
+
+/// Conversion between a Rust parameter field and a [`ParamValue`].
+pub trait ParamField: Sized {
+    /// The field as a value.
+    fn to_value(&self) -> ParamValue;
+    /// The field from a value (with float → triple promotion); `None` if the type is wrong.
+    fn from_value(v: &ParamValue) -> Option<Self>;
+}
+
+impl ParamField for f64 {
+    fn to_value(&self) -> ParamValue {
+        ParamValue::Float(*self)
+    }
+    fn from_value(v: &ParamValue) -> Option<Self> {
+        match v {
+            ParamValue::Float(x) => Some(*x),
+            _ => None,
+        }
+    }
+}
+
+impl ParamField for [f64; 3] {
+    fn to_value(&self) -> ParamValue {
+        ParamValue::Triple(*self)
+    }
+    fn from_value(v: &ParamValue) -> Option<Self> {
+        match v {
+            ParamValue::Triple(x) => Some(*x),
+            ParamValue::Float(x) => Some([*x; 3]),
+            _ => None,
+        }
+    }
+}
+
+impl ParamField for String {
+    fn to_value(&self) -> ParamValue {
+        ParamValue::String(self.clone())
+    }
+    fn from_value(v: &ParamValue) -> Option<Self> {
+        match v {
+            ParamValue::String(s) => Some(s.clone()),
+            _ => None,
+        }
+    }
+}
+
+impl ParamField for [f64; 16] {
+    fn to_value(&self) -> ParamValue {
+        ParamValue::Matrix(*self)
+    }
+    fn from_value(v: &ParamValue) -> Option<Self> {
+        match v {
+            ParamValue::Matrix(m) => Some(*m),
+            ParamValue::Float(x) => {
+                let mut m = [0.0; 16];
+                for i in 0..4 {
+                    m[i * 5] = *x;
+                }
+                Some(m)
+            }
+            _ => None,
+        }
+    }
+}
+
+/// What every shader publishes: metadata and parameters by name.
+pub trait Shader: Send + Sync {
+    /// Name, kind and parameters.
+    fn meta(&self) -> ShaderMeta;
+    /// Current value of a parameter.
+    fn param(&self, name: &str) -> Option<ParamValue>;
+    /// Sets a parameter by name (float promotes to triples).
+    fn set_param(&mut self, name: &str, value: &ParamValue) -> Result<(), ParamError>;
+}
+
+/// A surface shader: computes the colour and opacity leaving a surface point.
+pub trait SurfaceShader: Shader {
+    /// Shades the points of `ctx` (live lanes in `e`). Generic in the number type: this is
+    /// where type replacement happens.
+    fn shade<F: ShadingFloat, C: ShadingContext<F>>(&self, ctx: &mut C, e: &mut Exec<F>) -> SurfaceOutput<F>;
+}
+
+/// A light shader: the light's colour and direction as seen from surface points `ps`.
+pub trait LightShader: Shader {
+    /// Evaluates the light for the points `ps` (live lanes in `e`).
+    fn light<F: ShadingFloat>(&self, e: &mut Exec<F>, ps: Vec3<F>) -> LightOutput<F>;
+}
+
+/// A displacement shader: moves P and sets N.
+pub trait DisplacementShader: Shader {
+    /// Returns the displaced `(P, N)`.
+    fn displace<F: ShadingFloat, C: ShadingContext<F>>(&self, ctx: &mut C, e: &mut Exec<F>) -> (Vec3<F>, Vec3<F>);
+}
+
+/// Declares a shader's parameter struct with defaults, metadata and set/get by name.
+///
+/// ```
+/// anysl_core::shader_params! {
+///     /// A matte surface.
+///     pub struct Matte: surface "matte" {
+///         /// Ambient coefficient.
+///         uniform float Ka = 1.0;
+///         uniform float Kd = 1.0;
+///         uniform color tint = [1.0, 1.0, 1.0];
+///     }
+/// }
+/// use anysl_core::{Shader, ParamValue};
+/// let mut m = Matte::default();
+/// m.set_param("Kd", &ParamValue::Float(0.5)).unwrap();
+/// assert_eq!(m.Kd, 0.5);
+/// assert_eq!(m.meta().params.len(), 3);
+/// assert!(m.set_param("Kx", &ParamValue::Float(0.5)).is_err());
+/// ```
+#[macro_export]
+macro_rules! shader_params {
+    (@rty float) => { f64 };
+    (@rty color) => { [f64; 3] };
+    (@rty point) => { [f64; 3] };
+    (@rty vector) => { [f64; 3] };
+    (@rty normal) => { [f64; 3] };
+    (@rty string) => { ::std::string::String };
+    (@rty matrix) => { [f64; 16] };
+    (@pty float) => { $crate::ParamType::Float };
+    (@pty color) => { $crate::ParamType::Color };
+    (@pty point) => { $crate::ParamType::Point };
+    (@pty vector) => { $crate::ParamType::Vector };
+    (@pty normal) => { $crate::ParamType::Normal };
+    (@pty string) => { $crate::ParamType::String };
+    (@pty matrix) => { $crate::ParamType::Matrix };
+    (@storage uniform) => { $crate::Storage::Uniform };
+    (@storage varying) => { $crate::Storage::Varying };
+    (@kind surface) => { $crate::ShaderKind::Surface };
+    (@kind light) => { $crate::ShaderKind::Light };
+    (@kind displacement) => { $crate::ShaderKind::Displacement };
+    (@kind volume) => { $crate::ShaderKind::Volume };
+    (@kind imager) => { $crate::ShaderKind::Imager };
+    (
+        $(#[$doc:meta])*
+        $vis:vis struct $T:ident : $kind:ident $sname:literal $(uses_derivatives = $derivs:literal)? {
+            $( $(#[$fdoc:meta])* $storage:ident $ty:ident $field:ident = $default:expr; )*
+        }
+    ) => {
+        $(#[$doc])*
+        #[allow(non_snake_case)]
+        #[derive(Clone, Debug, PartialEq)]
+        $vis struct $T {
+            $( $(#[$fdoc])* pub $field: $crate::shader_params!(@rty $ty), )*
+        }
+
+        impl Default for $T {
+            fn default() -> Self {
+                Self { $( $field: ::core::convert::Into::into($default), )* }
+            }
+        }
+
+        impl $crate::Shader for $T {
+            fn meta(&self) -> $crate::ShaderMeta {
+                let d = Self::default();
+                $crate::ShaderMeta {
+                    name: $sname.to_string(),
+                    kind: $crate::shader_params!(@kind $kind),
+                    params: vec![$(
+                        $crate::ParamInfo {
+                            name: stringify!($field).to_string(),
+                            ty: $crate::shader_params!(@pty $ty),
+                            array_len: None,
+                            default: $crate::ParamField::to_value(&d.$field),
+                            storage: $crate::shader_params!(@storage $storage),
+                            output: false,
+                        },
+                    )*],
+                    uses_derivatives: false $(|| $derivs)?,
+                }
+            }
+            fn param(&self, name: &str) -> Option<$crate::ParamValue> {
+                match name {
+                    $( stringify!($field) => Some($crate::ParamField::to_value(&self.$field)), )*
+                    _ => None,
+                }
+            }
+            #[allow(unreachable_code, unused_variables)]
+            fn set_param(&mut self, name: &str, value: &$crate::ParamValue) -> Result<(), $crate::ParamError> {
+                match name {
+                    $( stringify!($field) => {
+                        self.$field = $crate::ParamField::from_value(value).ok_or_else(|| $crate::ParamError::Type {
+                            name: name.to_string(),
+                            expected: $crate::shader_params!(@pty $ty),
+                            got: value.clone(),
+                        })?;
+                        Ok(())
+                    } )*
+                    _ => Err($crate::ParamError::Unknown {
+                        shader: $sname.to_string(),
+                        name: name.to_string(),
+                        known: vec![$( stringify!($field).to_string(), )*],
+                    }),
+                }
+            }
+        }
+    };
+}

@@ -1,0 +1,79 @@
+//! Built-in illumination functions over the [`ShadingContext`]: RSL `ambient`, `diffuse`,
+//! `specular`, `phong` and `specularbrdf`. Each is an `illuminance` loop written once.
+
+use crate::context::ShadingContext;
+use crate::exec::Exec;
+use crate::float::ShadingFloat;
+use crate::vec::{Color, Vec3};
+
+use super::math::PI;
+
+/// RSL `ambient()`.
+#[inline(always)]
+#[must_use]
+pub fn ambient<F: ShadingFloat, C: ShadingContext<F>>(ctx: &mut C, e: &Exec<F>) -> Color<F> {
+    ctx.ambient(e)
+}
+
+/// RSL `diffuse(N)`: `Σ Cl · max(0, normalize(L)·N)` over lights in the hemisphere of `N`.
+#[inline(always)]
+#[must_use]
+pub fn diffuse<F: ShadingFloat, C: ShadingContext<F>>(ctx: &mut C, e: &mut Exec<F>, n: Vec3<F>) -> Color<F> {
+    let p = ctx.globals().P;
+    let mut c = Color::zero();
+    ctx.illuminance(e, "", p, Some((n, F::c(PI / 2.0))), |e, l, cl| {
+        let w = l.normalize().dot(n).max(F::c(0.0));
+        e.update(&mut c, |c| c + cl * w);
+    });
+    c
+}
+
+/// Blinn's specular lobe for one light: `max(0, N·H)^(1/roughness)` with
+/// `H = normalize(normalize(L) + V)`, zero where `N·L ≤ 0`.
+#[inline(always)]
+#[must_use]
+pub fn specularbrdf<F: ShadingFloat>(l: Vec3<F>, n: Vec3<F>, v: Vec3<F>, roughness: F) -> F {
+    let lu = l.normalize();
+    let h = (lu + v).normalize();
+    let ndh = n.dot(h).max(F::c(0.0));
+    let s = ndh.pow(F::c(1.0) / roughness);
+    F::select(n.dot(lu).gt(F::c(0.0)), s, F::c(0.0))
+}
+
+/// RSL `specular(N, V, roughness)`: `Σ Cl · specularbrdf(L, N, V, roughness)`.
+#[inline(always)]
+#[must_use]
+pub fn specular<F: ShadingFloat, C: ShadingContext<F>>(
+    ctx: &mut C,
+    e: &mut Exec<F>,
+    n: Vec3<F>,
+    v: Vec3<F>,
+    roughness: F,
+) -> Color<F> {
+    let p = ctx.globals().P;
+    let mut c = Color::zero();
+    ctx.illuminance(e, "", p, Some((n, F::c(PI / 2.0))), |e, l, cl| {
+        e.update(&mut c, |c| c + cl * specularbrdf(l, n, v, roughness));
+    });
+    c
+}
+
+/// RSL `phong(N, V, size)`: `Σ Cl · max(0, R·normalize(L))^size` with `R = reflect(-V, N)`.
+#[inline(always)]
+#[must_use]
+pub fn phong<F: ShadingFloat, C: ShadingContext<F>>(
+    ctx: &mut C,
+    e: &mut Exec<F>,
+    n: Vec3<F>,
+    v: Vec3<F>,
+    size: F,
+) -> Color<F> {
+    let p = ctx.globals().P;
+    let r = super::math::reflect(-v, n);
+    let mut c = Color::zero();
+    ctx.illuminance(e, "", p, Some((n, F::c(PI / 2.0))), |e, l, cl| {
+        let w = r.dot(l.normalize()).max(F::c(0.0)).pow(size);
+        e.update(&mut c, |c| c + cl * w);
+    });
+    c
+}

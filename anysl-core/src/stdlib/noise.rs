@@ -1,0 +1,351 @@
+//! Branch-free, table-free gradient noise and everything built on it.
+//!
+//! The core is Perlin's "improved noise" (2002) with the permutation table replaced by an
+//! integer hash computed on the fly (Teschner et al. spatial-hash primes, then Wellons'
+//! `lowbias32` finaliser), exactly as in `shared/bench/shading_workload.md` §4, so it
+//! vectorizes and needs no memory. Lattice coordinates are the `i32` bit patterns of
+//! `floor(x)`: the hash sees exact integers at any magnitude (no float-multiply hash that
+//! loses bits at 1e7), and the fractional part is taken before hashing, so detail is kept
+//! wherever the input precision has it.
+//!
+//! RSL conventions: `noise` is in [0, 1] (0.5 + 0.5·perlin), `snoise` in [-1, 1], `cellnoise`
+//! is constant on unit cells with values in [0, 1), `pnoise` repeats with a given period.
+
+use super::math::{clamp, fmod};
+use crate::float::{LatticeBits, ShadingFloat};
+use crate::vec::{Color, Vec3};
+
+/// Hash multipliers per lattice axis (x, y, z, w) and for the seed.
+const PRIMES: [u32; 5] = [73856093, 19349663, 83492791, 2654435761, 0x27d4_eb2d];
+
+/// `lowbias32` finaliser.
+#[inline(always)]
+fn finalize<B: LatticeBits>(mut h: B) -> B {
+    h = h ^ (h >> 16);
+    h = h.wrapping_mul(B::splat(0x7FEB_352D));
+    h = h ^ (h >> 15);
+    h = h.wrapping_mul(B::splat(0x846C_A68B));
+    h ^ (h >> 16)
+}
+
+/// Hash of an integer lattice point given as u32 lanes (`hash(i, j, k)` of the workload for
+/// 3D and seed 0; unused axes are 0).
+#[inline(always)]
+#[must_use]
+pub fn lattice_hash<B: LatticeBits>(c: &[B], seed: u32) -> B {
+    let mut h = B::splat(seed.wrapping_mul(PRIMES[4]));
+    for (axis, &ci) in c.iter().enumerate() {
+        h = h ^ ci.wrapping_mul(B::splat(PRIMES[axis]));
+    }
+    finalize(h)
+}
+
+/// Perlin's 16-case gradient for 3D: `dot(g[h & 15], (x, y, z))`, with selects.
+#[inline(always)]
+#[must_use]
+pub fn grad3<F: ShadingFloat>(h: F::Bits, x: F, y: F, z: F) -> F {
+    let bit = |m: u32| (h & F::Bits::splat(m)).eq_mask(F::Bits::splat(0));
+    let h15 = h & F::Bits::splat(15);
+    let lt8 = bit(8);
+    let lt4 = bit(8) & bit(4);
+    let is12or14 = h15.eq_mask(F::Bits::splat(12)) | h15.eq_mask(F::Bits::splat(14));
+    let u = F::select(lt8, x, y);
+    let v = F::select(lt4, y, F::select(is12or14, x, z));
+    F::select(bit(1), u, -u) + F::select(bit(2), v, -v)
+}
+
+/// Gradient for 4D: the 16 corners (±1, ±1, ±1, ±1) of the hypercube.
+#[inline(always)]
+fn grad4<F: ShadingFloat>(h: F::Bits, x: F, y: F, z: F, w: F) -> F {
+    let s = |m: u32, v: F| F::select((h & F::Bits::splat(m)).eq_mask(F::Bits::splat(0)), v, -v);
+    s(1, x) + s(2, y) + s(4, z) + s(8, w)
+}
+
+/// Perlin's fade curve `6t⁵ - 15t⁴ + 10t³`.
+#[inline(always)]
+#[must_use]
+pub fn fade<F: ShadingFloat>(t: F) -> F {
+    t * t * t * (t * (t * F::c(6.0) - F::c(15.0)) + F::c(10.0))
+}
+
+#[inline(always)]
+fn lerp<F: ShadingFloat>(t: F, a: F, b: F) -> F {
+    a + t * (b - a)
+}
+
+/// Lattice cell of one coordinate: `(floor as float, fraction, bits of floor, bits of floor+1)`,
+/// optionally wrapping the lattice with period `p` (`pnoise`).
+#[inline(always)]
+fn cell<F: ShadingFloat>(x: F, period: Option<F>) -> (F, F::Bits, F::Bits) {
+    let xf = x.floor();
+    let f = x - xf;
+    match period {
+        None => {
+            let i = xf.floor_bits();
+            (f, i, i.wrapping_add(F::Bits::splat(1)))
+        }
+        Some(p) => {
+            let p = p.round().max(F::c(1.0));
+            let i0 = fmod(xf, p);
+            let i1 = fmod(xf + F::c(1.0), p);
+            (f, i0.floor_bits(), i1.floor_bits())
+        }
+    }
+}
+
+/// Signed Perlin gradient noise in 3D, range ≈ [-1, 1], 0 at lattice points; `period`
+/// repeats the lattice (per axis) and `seed` selects an independent noise.
+#[inline(always)]
+#[must_use]
+pub fn perlin3<F: ShadingFloat>(p: Vec3<F>, period: Option<Vec3<F>>, seed: u32) -> F {
+    let (fx, i0, i1) = cell(p.x, period.map(|q| q.x));
+    let (fy, j0, j1) = cell(p.y, period.map(|q| q.y));
+    let (fz, k0, k1) = cell(p.z, period.map(|q| q.z));
+    let one = F::c(1.0);
+    let (gx0, gx1) = (fx, fx - one);
+    let (gy0, gy1) = (fy, fy - one);
+    let (gz0, gz1) = (fz, fz - one);
+    let c = |i, j, k, x, y, z| grad3::<F>(lattice_hash(&[i, j, k], seed), x, y, z);
+    let u = fade(fx);
+    let v = fade(fy);
+    let w = fade(fz);
+    let x00 = lerp(u, c(i0, j0, k0, gx0, gy0, gz0), c(i1, j0, k0, gx1, gy0, gz0));
+    let x10 = lerp(u, c(i0, j1, k0, gx0, gy1, gz0), c(i1, j1, k0, gx1, gy1, gz0));
+    let x01 = lerp(u, c(i0, j0, k1, gx0, gy0, gz1), c(i1, j0, k1, gx1, gy0, gz1));
+    let x11 = lerp(u, c(i0, j1, k1, gx0, gy1, gz1), c(i1, j1, k1, gx1, gy1, gz1));
+    lerp(w, lerp(v, x00, x10), lerp(v, x01, x11))
+}
+
+/// Signed Perlin gradient noise in 4D (hypercube-corner gradients), range ≈ [-1, 1].
+#[inline(always)]
+#[must_use]
+pub fn perlin4<F: ShadingFloat>(p: Vec3<F>, t: F, period: Option<(Vec3<F>, F)>, seed: u32) -> F {
+    let (fx, i0, i1) = cell(p.x, period.map(|q| q.0.x));
+    let (fy, j0, j1) = cell(p.y, period.map(|q| q.0.y));
+    let (fz, k0, k1) = cell(p.z, period.map(|q| q.0.z));
+    let (fw, l0, l1) = cell(t, period.map(|q| q.1));
+    let one = F::c(1.0);
+    let c = |i, j, k, l, x, y, z, w| grad4::<F>(lattice_hash(&[i, j, k, l], seed), x, y, z, w);
+    let (u, v, s, r) = (fade(fx), fade(fy), fade(fz), fade(fw));
+    let slice = |l, gw: F| {
+        let x00 = lerp(u, c(i0, j0, k0, l, fx, fy, fz, gw), c(i1, j0, k0, l, fx - one, fy, fz, gw));
+        let x10 = lerp(u, c(i0, j1, k0, l, fx, fy - one, fz, gw), c(i1, j1, k0, l, fx - one, fy - one, fz, gw));
+        let x01 = lerp(u, c(i0, j0, k1, l, fx, fy, fz - one, gw), c(i1, j0, k1, l, fx - one, fy, fz - one, gw));
+        let x11 = lerp(
+            u,
+            c(i0, j1, k1, l, fx, fy - one, fz - one, gw),
+            c(i1, j1, k1, l, fx - one, fy - one, fz - one, gw),
+        );
+        lerp(s, lerp(v, x00, x10), lerp(v, x01, x11))
+    };
+    // The 4D corner gradients have length 2 (vs √2 in 3D); scale to the same range.
+    lerp(r, slice(l0, fw), slice(l1, fw - one)) * F::c(0.5)
+}
+
+/// Seeds used for the components of vector-valued noise.
+const VECTOR_SEEDS: [u32; 3] = [0, 0x5bd1_e995, 0x1b87_3593];
+
+/// Where a noise is evaluated: 1D to 4D, as RSL's overloads of `noise(…)` take it.
+#[derive(Clone, Copy, Debug)]
+pub enum NoiseDomain<F> {
+    /// `noise(float)`.
+    D1(F),
+    /// `noise(float, float)`.
+    D2(F, F),
+    /// `noise(point)`.
+    D3(Vec3<F>),
+    /// `noise(point, float)`.
+    D4(Vec3<F>, F),
+}
+
+impl<F: ShadingFloat> NoiseDomain<F> {
+    /// The same domain with each coordinate multiplied by `s`.
+    #[inline(always)]
+    #[must_use]
+    pub fn scaled(self, s: F) -> Self {
+        match self {
+            Self::D1(x) => Self::D1(x * s),
+            Self::D2(x, y) => Self::D2(x * s, y * s),
+            Self::D3(p) => Self::D3(p * s),
+            Self::D4(p, t) => Self::D4(p * s, t * s),
+        }
+    }
+}
+
+/// Signed noise of a domain (3D noise with unused axes at 0, plus 4D).
+#[inline(always)]
+fn signed<F: ShadingFloat>(d: NoiseDomain<F>, period: Option<NoiseDomain<F>>, seed: u32) -> F {
+    // Unused axes sit at a non-lattice offset so 1D/2D noise is not identically 0 there.
+    let off = F::c(0.5);
+    let n = match d {
+        NoiseDomain::D1(x) => {
+            perlin3(Vec3::new(x, off, off), period.map(|p| match p {
+                NoiseDomain::D1(px) => Vec3::new(px, F::c(1e9), F::c(1e9)),
+                _ => Vec3::splat(F::c(1e9)),
+            }), seed)
+        }
+        NoiseDomain::D2(x, y) => perlin3(
+            Vec3::new(x, y, off),
+            period.map(|p| match p {
+                NoiseDomain::D2(px, py) => Vec3::new(px, py, F::c(1e9)),
+                _ => Vec3::splat(F::c(1e9)),
+            }),
+            seed,
+        ),
+        NoiseDomain::D3(p) => perlin3(
+            p,
+            period.map(|q| match q {
+                NoiseDomain::D3(pp) => pp,
+                _ => Vec3::splat(F::c(1e9)),
+            }),
+            seed,
+        ),
+        NoiseDomain::D4(p, t) => perlin4(
+            p,
+            t,
+            period.map(|q| match q {
+                NoiseDomain::D4(pp, pt) => (pp, pt),
+                _ => (Vec3::splat(F::c(1e9)), F::c(1e9)),
+            }),
+            seed,
+        ),
+    };
+    clamp(n, F::c(-1.0), F::c(1.0))
+}
+
+/// RSL `snoise`: signed noise in [-1, 1].
+#[inline(always)]
+#[must_use]
+pub fn snoise<F: ShadingFloat>(d: NoiseDomain<F>) -> F {
+    signed(d, None, 0)
+}
+
+/// RSL `noise` returning float: in [0, 1], 0.5 on lattice points.
+#[inline(always)]
+#[must_use]
+pub fn noise<F: ShadingFloat>(d: NoiseDomain<F>) -> F {
+    F::c(0.5) + F::c(0.5) * signed(d, None, 0)
+}
+
+/// RSL `pnoise`: `noise` that repeats with `period` along each axis (periods are rounded to
+/// whole cells, at least 1).
+#[inline(always)]
+#[must_use]
+pub fn pnoise<F: ShadingFloat>(d: NoiseDomain<F>, period: NoiseDomain<F>) -> F {
+    F::c(0.5) + F::c(0.5) * signed(d, Some(period), 0)
+}
+
+/// Signed periodic noise.
+#[inline(always)]
+#[must_use]
+pub fn psnoise<F: ShadingFloat>(d: NoiseDomain<F>, period: NoiseDomain<F>) -> F {
+    signed(d, Some(period), 0)
+}
+
+/// RSL `noise` returning a point/vector/colour: three independent noises in [0, 1].
+#[inline(always)]
+#[must_use]
+pub fn vnoise<F: ShadingFloat>(d: NoiseDomain<F>) -> Vec3<F> {
+    let h = F::c(0.5);
+    let n = |s| h + h * signed(d, None, s);
+    Vec3::new(n(VECTOR_SEEDS[0]), n(VECTOR_SEEDS[1]), n(VECTOR_SEEDS[2]))
+}
+
+/// Signed vector noise in [-1, 1]³.
+#[inline(always)]
+#[must_use]
+pub fn vsnoise<F: ShadingFloat>(d: NoiseDomain<F>) -> Vec3<F> {
+    let n = |s| signed(d, None, s);
+    Vec3::new(n(VECTOR_SEEDS[0]), n(VECTOR_SEEDS[1]), n(VECTOR_SEEDS[2]))
+}
+
+/// Colour noise in [0, 1]³.
+#[inline(always)]
+#[must_use]
+pub fn cnoise<F: ShadingFloat>(d: NoiseDomain<F>) -> Color<F> {
+    vnoise(d).to_color()
+}
+
+/// Periodic vector noise in [0, 1]³.
+#[inline(always)]
+#[must_use]
+pub fn vpnoise<F: ShadingFloat>(d: NoiseDomain<F>, period: NoiseDomain<F>) -> Vec3<F> {
+    let h = F::c(0.5);
+    let n = |s| h + h * signed(d, Some(period), s);
+    Vec3::new(n(VECTOR_SEEDS[0]), n(VECTOR_SEEDS[1]), n(VECTOR_SEEDS[2]))
+}
+
+/// Lattice bits of a domain's cell.
+#[inline(always)]
+fn cell_bits<F: ShadingFloat>(d: NoiseDomain<F>) -> ([F::Bits; 4], usize) {
+    let b = |x: F| x.floor_bits();
+    let zero = F::Bits::splat(0);
+    match d {
+        NoiseDomain::D1(x) => ([b(x), zero, zero, zero], 1),
+        NoiseDomain::D2(x, y) => ([b(x), b(y), zero, zero], 2),
+        NoiseDomain::D3(p) => ([b(p.x), b(p.y), b(p.z), zero], 3),
+        NoiseDomain::D4(p, t) => ([b(p.x), b(p.y), b(p.z), b(t)], 4),
+    }
+}
+
+/// RSL `cellnoise` returning float: constant on each unit cell, uniform in [0, 1).
+#[inline(always)]
+#[must_use]
+pub fn cellnoise<F: ShadingFloat>(d: NoiseDomain<F>) -> F {
+    let (c, n) = cell_bits(d);
+    F::bits_to_unit(lattice_hash(&c[..n], 0x0c31_1ced))
+}
+
+/// RSL `cellnoise` returning a point/colour: three independent values in [0, 1).
+#[inline(always)]
+#[must_use]
+pub fn vcellnoise<F: ShadingFloat>(d: NoiseDomain<F>) -> Vec3<F> {
+    let (c, n) = cell_bits(d);
+    let v = |s: u32| F::bits_to_unit(lattice_hash(&c[..n], 0x0c31_1ced ^ s));
+    Vec3::new(v(VECTOR_SEEDS[0]), v(VECTOR_SEEDS[1]), v(VECTOR_SEEDS[2]))
+}
+
+/// Fractional Brownian motion: `Σ gain^o · snoise(lacunarity^o · p)` over `octaves` octaves.
+/// The octave count is uniform (a loop with a fixed trip count).
+#[inline(always)]
+#[must_use]
+pub fn fbm<F: ShadingFloat>(d: NoiseDomain<F>, octaves: u32, lacunarity: f64, gain: f64) -> F {
+    let mut sum = F::c(0.0);
+    let mut amp = 1.0;
+    let mut freq = 1.0;
+    for _ in 0..octaves {
+        sum += F::c(amp) * snoise(d.scaled(F::c(freq)));
+        amp *= gain;
+        freq *= lacunarity;
+    }
+    sum
+}
+
+/// Turbulence: `Σ gain^o · |snoise(lacunarity^o · p)|` (the classic granite/marble sum).
+#[inline(always)]
+#[must_use]
+pub fn turbulence<F: ShadingFloat>(d: NoiseDomain<F>, octaves: u32, lacunarity: f64, gain: f64) -> F {
+    let mut sum = F::c(0.0);
+    let mut amp = 1.0;
+    let mut freq = 1.0;
+    for _ in 0..octaves {
+        sum += F::c(amp) * snoise(d.scaled(F::c(freq))).abs();
+        amp *= gain;
+        freq *= lacunarity;
+    }
+    sum
+}
+
+/// Shorthand: `noise(point)` in [0, 1].
+#[inline(always)]
+#[must_use]
+pub fn noise3<F: ShadingFloat>(p: Vec3<F>) -> F {
+    noise(NoiseDomain::D3(p))
+}
+
+/// Shorthand: `snoise(point)` in [-1, 1].
+#[inline(always)]
+#[must_use]
+pub fn snoise3<F: ShadingFloat>(p: Vec3<F>) -> F {
+    snoise(NoiseDomain::D3(p))
+}
