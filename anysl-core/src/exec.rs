@@ -99,52 +99,62 @@ impl<F: ShadingFloat> Exec<F> {
     /// Runs `body` with the mask narrowed to `cond`; skipped when no live lane has `cond`.
     #[inline(always)]
     pub fn if_(&mut self, cond: F::Mask, body: impl FnOnce(&mut Self)) {
-        self.if_else(cond, body, |_| {});
+        let mut body = Some(body);
+        self.if_else(cond, |e, then| {
+            if then {
+                if let Some(b) = body.take() {
+                    b(e);
+                }
+            }
+        });
     }
 
-    /// RSL `if (cond) then else otherwise`, with masks. An arm no live lane needs is skipped.
+    /// RSL `if (cond) … else …`, with masks: `arms(e, true)` is the then-arm, `arms(e, false)`
+    /// the else-arm (one closure, so both arms may write the same variables). An arm no live
+    /// lane needs is not run.
+    ///
+    /// ```
+    /// # use anysl_core::{Exec, ShadingFloat};
+    /// let mut e = Exec::<f32>::new();
+    /// let mut x = 3.0f32;
+    /// e.if_else(x.gt(2.0), |e, then| {
+    ///     if then { e.update(&mut x, |x| x - 2.0) } else { e.assign(&mut x, 0.0) }
+    /// });
+    /// assert_eq!(x, 1.0);
+    /// ```
     #[inline(always)]
-    pub fn if_else(
-        &mut self,
-        cond: F::Mask,
-        then: impl FnOnce(&mut Self),
-        otherwise: impl FnOnce(&mut Self),
-    ) {
+    pub fn if_else(&mut self, cond: F::Mask, mut arms: impl FnMut(&mut Self, bool)) {
         let saved = self.active;
         let t = saved & cond;
         if t.any() {
             self.active = t;
-            then(self);
+            arms(self, true);
         }
         let f = saved & !cond;
         if f.any() {
             self.active = f;
-            otherwise(self);
+            arms(self, false);
         }
         self.active = saved & !(self.broken | self.continued | self.returned);
     }
 
-    /// `cond ? a() : b()` as a value, evaluating only the arms some live lane needs.
+    /// `cond ? arms(true) : arms(false)` as a value, evaluating only the arms some live lane
+    /// needs.
     #[inline(always)]
-    pub fn choose<T: Blend<F>>(
-        &mut self,
-        cond: F::Mask,
-        a: impl FnOnce(&mut Self) -> T,
-        b: impl FnOnce(&mut Self) -> T,
-    ) -> T {
+    pub fn choose<T: Blend<F>>(&mut self, cond: F::Mask, mut arms: impl FnMut(&mut Self, bool) -> T) -> T {
         let live_t = self.active & cond;
         let live_f = self.active & !cond;
         if !live_f.any() {
-            return a(self);
+            return arms(self, true);
         }
         if !live_t.any() {
-            return b(self);
+            return arms(self, false);
         }
         let saved = self.active;
         self.active = live_t;
-        let va = a(self);
+        let va = arms(self, true);
         self.active = live_f;
-        let vb = b(self);
+        let vb = arms(self, false);
         self.active = saved;
         T::blend(cond, va, vb)
     }

@@ -10,6 +10,7 @@
 //!
 //! RSL conventions: `noise` is in [0, 1] (0.5 + 0.5·perlin), `snoise` in [-1, 1], `cellnoise`
 //! is constant on unit cells with values in [0, 1), `pnoise` repeats with a given period.
+//! Non-finite coordinates give the lattice-point value (noise 0.5, snoise 0), never NaN.
 
 use super::math::{clamp, fmod};
 use crate::float::{LatticeBits, ShadingFloat};
@@ -210,7 +211,8 @@ fn signed<F: ShadingFloat>(d: NoiseDomain<F>, period: Option<NoiseDomain<F>>, se
             seed,
         ),
     };
-    clamp(n, F::c(-1.0), F::c(1.0))
+    // Non-finite input (NaN, ±inf: the fraction is NaN) reads as 0, so noise stays finite.
+    F::select(n.is_nan(), F::c(0.0), clamp(n, F::c(-1.0), F::c(1.0)))
 }
 
 /// RSL `snoise`: signed noise in [-1, 1].
