@@ -190,6 +190,24 @@ pub trait ShadingFloat:
     /// Builds a value from per-lane f64 values (`lanes.len() == LANES`).
     fn from_lanes(lanes: &[f64]) -> Self;
 
+    /// Loads `LANES` consecutive values (one SIMD load for vector types; derivatives zero,
+    /// intervals degenerate). `src.len() >= LANES`.
+    #[inline(always)]
+    fn load(src: &[f32]) -> Self {
+        let mut buf = [0.0f64; 64];
+        for (b, s) in buf.iter_mut().zip(&src[..Self::LANES]) {
+            *b = *s as f64;
+        }
+        Self::from_lanes(&buf[..Self::LANES])
+    }
+    /// Stores lane values (see [`ShadingFloat::lane`]) to `LANES` consecutive slots.
+    #[inline(always)]
+    fn store(self, dst: &mut [f32]) {
+        for (i, d) in dst[..Self::LANES].iter_mut().enumerate() {
+            *d = self.lane(i) as f32;
+        }
+    }
+
     /// `m ? a : b` lane by lane.
     fn select(m: Self::Mask, a: Self, b: Self) -> Self;
     /// `self < rhs`.
@@ -329,6 +347,14 @@ macro_rules! impl_scalar_float {
             #[inline(always)]
             fn from_lanes(lanes: &[f64]) -> Self {
                 lanes[0] as $t
+            }
+            #[inline(always)]
+            fn load(src: &[f32]) -> Self {
+                src[0] as $t
+            }
+            #[inline(always)]
+            fn store(self, dst: &mut [f32]) {
+                dst[0] = self as f32;
             }
             #[inline(always)]
             fn select(m: bool, a: Self, b: Self) -> Self {

@@ -25,6 +25,7 @@ pub mod exec;
 pub mod float;
 pub mod stdlib;
 pub mod prelude;
+pub mod points;
 pub mod shader;
 pub mod vec;
 
