@@ -1,0 +1,630 @@
+//! Vectorized f32 math kernels, written once over the private [`Wide`] trait and shared by
+//! every lane width.
+//!
+//! All kernels are branch-free (the one exception is the cold scalar fallback of the
+//! trigonometric functions for |x| > 2^19, see [`sin`]) and rely on fused multiply-add for
+//! their extended-precision steps (`two_prod` via `fma(a, b, -a·b)`), so build with FMA
+//! available (`target-cpu=native` or x86-64-v3).
+//!
+//! Polynomials: Chebyshev interpolants of the reduced functions, converted to monomial
+//! form and rounded to f32, generated and checked by `tools/polyfit.py` (method:
+//! L. N. Trefethen, *Approximation Theory and Approximation Practice*, ch. 16). Range
+//! reductions: Cody & Waite, *Software Manual for the Elementary Functions* (1980), with
+//! FMA-exact products. Special values follow C99 Annex F, i.e. the `f32` methods of std.
+
+// Coefficients are printed by tools/polyfit.py with 9 significant digits, which round to
+// exactly the intended f32; keeping them verbatim makes them checkable against the script.
+#![allow(clippy::excessive_precision)]
+
+use core::ops::{Add, BitAnd, BitOr, BitXor, Div, Mul, Neg, Not, Shl, Shr, Sub};
+
+/// The operations of a `wide` f32 vector the kernels need (implemented by `impl_wide!`).
+///
+/// Masks are float vectors whose lanes are all-ones or all-zeros, as in `wide`.
+pub(crate) trait Wide:
+    Copy
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Div<Output = Self>
+    + Neg<Output = Self>
+    + BitAnd<Output = Self>
+    + BitOr<Output = Self>
+    + BitXor<Output = Self>
+    + Not<Output = Self>
+{
+    /// Signed 32-bit integer lanes of the same width.
+    type I: Copy
+        + Add<Output = Self::I>
+        + Sub<Output = Self::I>
+        + BitAnd<Output = Self::I>
+        + BitOr<Output = Self::I>
+        + BitXor<Output = Self::I>
+        + Shl<u32, Output = Self::I>
+        + Shr<u32, Output = Self::I>;
+    /// Every lane `v`.
+    fn splat(v: f32) -> Self;
+    /// Every integer lane `v`.
+    fn splat_i(v: i32) -> Self::I;
+    /// Bit pattern as integers.
+    fn bits(self) -> Self::I;
+    /// Float from bit pattern.
+    fn from_bits(i: Self::I) -> Self;
+    /// `self * m + a` with one rounding.
+    fn fma(self, m: Self, a: Self) -> Self;
+    /// Correctly rounded square root.
+    fn sqrt(self) -> Self;
+    /// Round toward -inf.
+    fn floor(self) -> Self;
+    /// Round toward zero.
+    fn trunc(self) -> Self;
+    /// Round to nearest, ties to even.
+    fn round_even(self) -> Self;
+    /// Truncating conversion; out of range and NaN give `i32::MIN` (the x86 "indefinite").
+    fn to_int(self) -> Self::I;
+    /// Integer to float, rounding to nearest.
+    fn from_int(i: Self::I) -> Self;
+    /// `self < r` mask.
+    fn lt(self, r: Self) -> Self;
+    /// `self <= r` mask.
+    fn le(self, r: Self) -> Self;
+    /// `self == r` mask.
+    fn eq(self, r: Self) -> Self;
+    /// `m ? a : b`.
+    fn select(m: Self, a: Self, b: Self) -> Self;
+    /// `m ? a : b` on integer lanes.
+    fn select_i(m: Self, a: Self::I, b: Self::I) -> Self::I;
+    /// Some lane of the mask is set.
+    fn any(self) -> bool;
+    /// Replaces the lanes selected by `m` with `f(lane)` (slow path, not vectorized).
+    fn map_where(self, m: Self, f: fn(f32) -> f32) -> Self;
+}
+
+/// Implements [`Wide`] for a `wide` float type and its integer twin.
+macro_rules! impl_wide {
+    ($f:ident, $i:ident, $from_int:ident) => {
+        impl Wide for wide::$f {
+            type I = wide::$i;
+            #[inline(always)]
+            fn splat(v: f32) -> Self {
+                wide::$f::splat(v)
+            }
+            #[inline(always)]
+            fn splat_i(v: i32) -> Self::I {
+                wide::$i::splat(v)
+            }
+            #[inline(always)]
+            fn bits(self) -> Self::I {
+                wide::bytemuck::cast(self)
+            }
+            #[inline(always)]
+            fn from_bits(i: Self::I) -> Self {
+                wide::bytemuck::cast(i)
+            }
+            #[inline(always)]
+            fn fma(self, m: Self, a: Self) -> Self {
+                self.mul_add(m, a)
+            }
+            #[inline(always)]
+            fn sqrt(self) -> Self {
+                wide::$f::sqrt(self)
+            }
+            #[inline(always)]
+            fn floor(self) -> Self {
+                wide::$f::floor(self)
+            }
+            #[inline(always)]
+            fn trunc(self) -> Self {
+                wide::$f::trunc(self)
+            }
+            #[inline(always)]
+            fn round_even(self) -> Self {
+                self.round_ties_even()
+            }
+            #[inline(always)]
+            fn to_int(self) -> Self::I {
+                self.fast_trunc_int()
+            }
+            #[inline(always)]
+            fn from_int(i: Self::I) -> Self {
+                wide::$f::$from_int(i)
+            }
+            #[inline(always)]
+            fn lt(self, r: Self) -> Self {
+                self.simd_lt(r)
+            }
+            #[inline(always)]
+            fn le(self, r: Self) -> Self {
+                self.simd_le(r)
+            }
+            #[inline(always)]
+            fn eq(self, r: Self) -> Self {
+                self.simd_eq(r)
+            }
+            #[inline(always)]
+            fn select(m: Self, a: Self, b: Self) -> Self {
+                m.select(a, b)
+            }
+            #[inline(always)]
+            fn select_i(m: Self, a: Self::I, b: Self::I) -> Self::I {
+                let m: wide::$i = wide::bytemuck::cast(m);
+                m.select(a, b)
+            }
+            #[inline(always)]
+            fn any(self) -> bool {
+                wide::$f::any(self)
+            }
+            #[cold]
+            #[inline(never)]
+            fn map_where(self, m: Self, f: fn(f32) -> f32) -> Self {
+                let mut v = self.to_array();
+                let m = m.to_bitmask();
+                for (i, x) in v.iter_mut().enumerate() {
+                    if m & (1 << i) != 0 {
+                        *x = f(*x);
+                    }
+                }
+                wide::$f::from(v)
+            }
+        }
+    };
+}
+
+impl_wide!(f32x4, i32x4, from_i32x4);
+impl_wide!(f32x8, i32x8, from_i32x8);
+impl_wide!(f32x16, i32x16, from_i32x16);
+
+// ---------------------------------------------------------------------------------------
+// Small helpers.
+
+#[inline(always)]
+fn k<W: Wide>(v: f32) -> W {
+    W::splat(v)
+}
+
+const SIGN: i32 = i32::MIN;
+
+/// Polynomial `c[0] + c[1] x + …` by Horner's rule with FMA.
+#[inline(always)]
+fn horner<W: Wide, const N: usize>(x: W, c: [f32; N]) -> W {
+    let mut acc = k::<W>(c[N - 1]);
+    let mut i = N - 1;
+    while i > 0 {
+        i -= 1;
+        acc = acc.fma(x, k(c[i]));
+    }
+    acc
+}
+
+/// |x| (clears the sign bit; NaN stays NaN).
+#[inline(always)]
+pub(crate) fn abs<W: Wide>(x: W) -> W {
+    W::from_bits(x.bits() & W::splat_i(i32::MAX))
+}
+
+/// The sign bit of `x` as an integer mask (`i32::MIN` or 0).
+#[inline(always)]
+fn sign_bit<W: Wide>(x: W) -> W::I {
+    x.bits() & W::splat_i(SIGN)
+}
+
+/// `x` with its sign bit flipped where `s` has it set.
+#[inline(always)]
+fn xor_sign<W: Wide>(x: W, s: W::I) -> W {
+    W::from_bits(x.bits() ^ s)
+}
+
+/// Lanes holding NaN.
+#[inline(always)]
+pub(crate) fn is_nan<W: Wide>(x: W) -> W {
+    !x.eq(x)
+}
+
+/// `2^n` for integer lanes `n` in the normal exponent range [-126, 127].
+#[inline(always)]
+fn pow2i<W: Wide>(n: W::I) -> W {
+    W::from_bits((n + W::splat_i(127)) << 23)
+}
+
+// ---------------------------------------------------------------------------------------
+// Rounding, min/max, integer conversions.
+
+/// Nearest integer, halves away from zero (`f32::round`).
+#[inline(always)]
+pub(crate) fn round<W: Wide>(x: W) -> W {
+    let t = x.trunc();
+    // `x - t` is exact; |x| >= 2^23 (and ±inf, NaN) leave `t = x` and a zero/NaN fraction.
+    let frac = abs(x - t);
+    let one = W::from_bits(W::splat_i(1.0f32.to_bits() as i32) | sign_bit(x));
+    W::select(k::<W>(0.5).le(frac), t + one, t)
+}
+
+/// Minimum; a NaN operand yields the other operand (`f32::min`).
+#[inline(always)]
+pub(crate) fn min<W: Wide>(a: W, b: W) -> W {
+    W::select(is_nan(a), b, W::select(b.lt(a), b, a))
+}
+
+/// Maximum; a NaN operand yields the other operand (`f32::max`).
+#[inline(always)]
+pub(crate) fn max<W: Wide>(a: W, b: W) -> W {
+    W::select(is_nan(a), b, W::select(a.lt(b), b, a))
+}
+
+/// Bits of `(floor(x) as i32)`: saturating, NaN → 0 (Rust `as` semantics).
+#[inline(always)]
+pub(crate) fn floor_to_i32<W: Wide>(x: W) -> W::I {
+    // The hardware conversion returns i32::MIN for NaN and for both overflow directions;
+    // i32::MIN is already right for x < -2^31.
+    let v = x.floor().to_int();
+    let v = W::select_i(k::<W>(2147483648.0).le(x), W::splat_i(i32::MAX), v);
+    W::select_i(is_nan(x), W::splat_i(0), v)
+}
+
+// ---------------------------------------------------------------------------------------
+// Exponential and logarithm.
+
+/// 2^r = 1 + r·Q(r) on |r| <= 0.5 (tools/polyfit.py "exp2 Q", max rel. error 2.3e-9).
+const EXP2_Q: [f32; 7] = [
+    6.931471825e-1,
+    2.402265072e-1,
+    5.550410971e-2,
+    9.618056938e-3,
+    1.333350199e-3,
+    1.546146814e-4,
+    1.529734072e-5,
+];
+
+/// 2^(hi + lo) for a double-f32 exponent (|lo| <= ulp(hi)), with overflow to +inf,
+/// gradual underflow to the subnormals and 0, and NaN propagation from `hi`.
+#[inline(always)]
+fn exp2_dd<W: Wide>(hi: W, lo: W) -> W {
+    // Beyond 129 and -151 the result is inf or 0 whatever `lo` holds (it may be NaN when hi
+    // is infinite), so clamp `hi` and drop `lo` there; NaN passes through the selects.
+    let in_range = abs(hi).le(k(152.0));
+    let h = W::select(k::<W>(129.0).lt(hi), k(129.0), hi);
+    let h = W::select(h.lt(k(-151.0)), k(-151.0), h);
+    let l = W::select(in_range, lo, k(0.0));
+    let n = h.round_even();
+    let r = (h - n) + l;
+    let p = (r * horner(r, EXP2_Q)) + k(1.0);
+    // Scale in two steps so that 2^n stays representable: n = n1 + n2, both in [-76, 65].
+    let ni = n.to_int();
+    let n1 = ni >> 1;
+    let n2 = ni - n1;
+    p * pow2i::<W>(n1) * pow2i::<W>(n2)
+}
+
+/// 2^x.
+#[inline(always)]
+pub(crate) fn exp2<W: Wide>(x: W) -> W {
+    exp2_dd(x, k(0.0))
+}
+
+/// log2(e) split as hi + lo (f32 + remainder).
+const LOG2E_HI: f32 = 1.442_695_02;
+const LOG2E_LO: f32 = 1.925_963e-8;
+
+/// e^x = 2^(x·log2 e), with x·log2 e formed exactly as a double-f32 (Cody–Waite in the
+/// exponent rather than in the argument).
+#[inline(always)]
+pub(crate) fn exp<W: Wide>(x: W) -> W {
+    let hi = x * k(LOG2E_HI);
+    let lo = x.fma(k(LOG2E_LO), x.fma(k(LOG2E_HI), -hi));
+    exp2_dd(hi, lo)
+}
+
+/// ln(1+f) = f - f²/2 + f³·L(f) for f in [√½-1, √2-1] (tools/polyfit.py "log L", degree 8,
+/// max error of the f³·L term relative to ln(1+f): 3.4e-9).
+const LOG_L: [f32; 9] = [
+    3.333333135e-1,
+    -2.499999702e-1,
+    2.000071555e-1,
+    -1.666780263e-1,
+    1.424905807e-1,
+    -1.242568716e-1,
+    1.168541983e-1,
+    -1.147973388e-1,
+    6.971611828e-2,
+];
+
+/// Range reduction shared by the logarithms: x = 2^e·(1+f), (1+f) in [√½, √2), and
+/// ln(1+f) as a double-f32 `(hi, lo)`. Valid for finite x > 0 (subnormals included);
+/// other inputs give garbage that the callers replace.
+#[inline(always)]
+fn log_reduce<W: Wide>(x: W) -> (W, W, W) {
+    let tiny = x.lt(k(f32::MIN_POSITIVE));
+    let xs = W::select(tiny, x * k(16_777_216.0), x);
+    // Subtracting the bits of √½ makes the exponent field round m into [√½, √2).
+    let u = xs.bits();
+    let e = (u - W::splat_i(0x3f35_04f3)) >> 23;
+    let m = W::from_bits(u - (e << 23));
+    let e = W::from_int(e) - W::select(tiny, k(24.0), k(0.0));
+    let f = m - k(1.0); // exact (Sterbenz)
+                        // -f²/2 exactly as b_hi + b_lo, then f + b_hi by Fast2Sum (|f| >= f²/2).
+    let f2 = f * f;
+    let b_hi = f2 * k(-0.5);
+    let b_lo = f.fma(f, -f2) * k(-0.5);
+    let s_hi = f + b_hi;
+    let s_lo = (f - s_hi) + b_hi;
+    let lo = (f2 * f).fma(horner(f, LOG_L), s_lo + b_lo);
+    (e, s_hi, lo)
+}
+
+/// log2(x) as a double-f32 for finite x > 0; relative error about 2^-28.
+#[inline(always)]
+fn log2_dd<W: Wide>(x: W) -> (W, W) {
+    let (e, ln_hi, ln_lo) = log_reduce(x);
+    let l_hi = ln_hi * k(LOG2E_HI);
+    let l_lo = ln_lo.fma(
+        k(LOG2E_HI),
+        ln_hi.fma(k(LOG2E_LO), ln_hi.fma(k(LOG2E_HI), -l_hi)),
+    );
+    // Fast2Sum: e is an integer and |l_hi| <= 0.5, so |e| >= |l_hi| unless e = 0.
+    let hi = e + l_hi;
+    let lo = ((e - hi) + l_hi) + l_lo;
+    // Renormalize (Fast2Sum, |hi| > |lo|) so that |lo| <= ulp(hi)/2: pow scales the low part
+    // by y and feeds it to `exp2_dd`, whose polynomial only covers |r| <= 0.5.
+    let s = hi + lo;
+    (s, lo - (s - hi))
+}
+
+/// Replaces the logarithm of non-positive-or-non-finite inputs by its C99 value.
+#[inline(always)]
+fn log_specials<W: Wide>(x: W, v: W) -> W {
+    let ok = k::<W>(0.0).lt(x) & x.lt(k(f32::INFINITY));
+    let special = W::select(
+        x.eq(k(0.0)),
+        k(f32::NEG_INFINITY),
+        W::select(x.eq(k(f32::INFINITY)), x, k(f32::NAN)),
+    );
+    W::select(ok, v, special)
+}
+
+/// log2(x).
+#[inline(always)]
+pub(crate) fn log2<W: Wide>(x: W) -> W {
+    let (hi, lo) = log2_dd(x);
+    log_specials(x, hi + lo)
+}
+
+/// ln 2 split as hi (16 significant bits, so e·hi is exact) + lo.
+const LN2_HI16: f32 = 0.693_145_751_953_125;
+const LN2_LO16: f32 = 1.428_606_8e-6;
+
+/// ln(x).
+#[inline(always)]
+pub(crate) fn ln<W: Wide>(x: W) -> W {
+    let (e, ln_hi, ln_lo) = log_reduce(x);
+    let p_hi = e * k(LN2_HI16);
+    // Fast2Sum: |e·ln2| >= 0.69 > |ln_hi| unless e = 0.
+    let hi = p_hi + ln_hi;
+    let lo = ((p_hi - hi) + ln_hi) + e.fma(k(LN2_LO16), ln_lo);
+    log_specials(x, hi + lo)
+}
+
+/// x^y (C99 `pow`, as `f32::powf`) = 2^(y·log2|x|) in double-f32, with the sign from the
+/// parity of integer y for negative x.
+#[inline(always)]
+pub(crate) fn pow<W: Wide>(x: W, y: W) -> W {
+    let ax = abs(x);
+    let (lh, ll) = log2_dd(ax);
+    // log2 of 0 and inf (NaN stays NaN through the arithmetic below).
+    let finite = ax.lt(k(f32::INFINITY));
+    let zero = ax.eq(k(0.0));
+    let lh = W::select(zero, k(f32::NEG_INFINITY), W::select(finite, lh, ax));
+    let ll = W::select(finite & !zero, ll, k(0.0));
+    let th = y * lh;
+    let tl = y.fma(ll, y.fma(lh, -th));
+    let a = exp2_dd(th, tl);
+
+    let y_int = y.floor().eq(y); // true for ±inf, false for NaN
+    let half = y * k(0.5);
+    let y_odd = y_int & !half.floor().eq(half);
+    let x_neg = W::from_bits(x.bits() >> 31) & !is_nan(x);
+    let a = xor_sign(a, (x_neg & y_odd).bits() & W::splat_i(SIGN));
+    let domain_error = x.lt(k(0.0)) & finite & !y_int;
+    let a = W::select(domain_error, k(f32::NAN), a);
+    let one = y.eq(k(0.0)) | x.eq(k(1.0)) | (ax.eq(k(1.0)) & abs(y).eq(k(f32::INFINITY)));
+    W::select(one, k(1.0), a)
+}
+
+// ---------------------------------------------------------------------------------------
+// Trigonometry.
+
+/// sin r = r + r³·S(r²), |r| <= 0.82 (tools/polyfit.py "sin S", degree 3, error 3.1e-9).
+const SIN_S: [f32; 4] = [
+    -1.666666716e-1,
+    8.333331905e-3,
+    -1.983986440e-4,
+    2.722240652e-6,
+];
+/// cos r = 1 - r²/2 + r⁴·C(r²), |r| <= 0.82 ("cos C", degree 3, error 8.4e-10).
+const COS_C: [f32; 4] = [
+    4.166666791e-2,
+    -1.388888690e-3,
+    2.480041439e-5,
+    -2.727799142e-7,
+];
+/// tan r = r + r³·T(r²), |r| <= 0.82 ("tan T", degree 8, error 4.8e-9).
+const TAN_T: [f32; 9] = [
+    3.333333433e-1,
+    1.333333105e-1,
+    5.396902934e-2,
+    2.185781859e-2,
+    8.950174786e-3,
+    3.233517287e-3,
+    2.304464579e-3,
+    -5.280334735e-4,
+    9.456218686e-4,
+];
+
+/// π/2 in three f32 parts (Cody–Waite); with FMA, `x - n·P1` is exact for |x| <= 2^19.
+const PIO2_1: f32 = 1.570_796_4;
+const PIO2_2: f32 = -4.371_139e-8;
+const PIO2_3: f32 = -1.715_124_5e-15;
+const PIO2_LO: f32 = PIO2_2;
+const PI_HI: f32 = core::f32::consts::PI;
+const PI_LO: f32 = -8.742_278e-8;
+const FRAC_2_PI: f32 = core::f32::consts::FRAC_2_PI;
+
+/// Largest |x| reduced in vector code; beyond it the lanes go through std (Payne–Hanek).
+const TRIG_VECTOR_LIMIT: f32 = 524_288.0;
+
+/// Reduces |x| = n·π/2 + r, |r| <= 0.82, returning `(r, n)`.
+#[inline(always)]
+fn reduce_pio2<W: Wide>(ax: W) -> (W, W::I) {
+    let n = (ax * k(FRAC_2_PI)).round_even();
+    let r = n.fma(k(-PIO2_1), ax);
+    let r = n.fma(k(-PIO2_2), r);
+    let r = n.fma(k(-PIO2_3), r);
+    (r, n.to_int())
+}
+
+/// sin or cos: `quadrant_shift` 0 gives sin |x|, 1 gives cos |x|.
+#[inline(always)]
+fn sin_cos_abs<W: Wide>(ax: W, quadrant_shift: i32) -> W {
+    let (r, n) = reduce_pio2(ax);
+    let q = n + W::splat_i(quadrant_shift);
+    let z = r * r;
+    let s = (r * z).fma(horner(z, SIN_S), r);
+    let c = z.fma(z.fma(horner(z, COS_C), k(-0.5)), k(1.0));
+    let odd = W::from_bits((q << 31) >> 31);
+    let v = W::select(odd, c, s);
+    xor_sign(v, (q << 30) & W::splat_i(SIGN))
+}
+
+/// Runs the std function on lanes too large for the vector reduction (and on ±inf).
+#[inline(always)]
+fn trig_fallback<W: Wide>(x: W, ax: W, v: W, f: fn(f32) -> f32) -> W {
+    let big = k::<W>(TRIG_VECTOR_LIMIT).lt(ax);
+    if big.any() {
+        W::select(big, x.map_where(big, f), v)
+    } else {
+        v
+    }
+}
+
+/// sin x.
+#[inline(always)]
+pub(crate) fn sin<W: Wide>(x: W) -> W {
+    let ax = abs(x);
+    let v = xor_sign(sin_cos_abs(ax, 0), sign_bit(x));
+    trig_fallback(x, ax, v, f32::sin)
+}
+
+/// cos x.
+#[inline(always)]
+pub(crate) fn cos<W: Wide>(x: W) -> W {
+    let ax = abs(x);
+    let v = sin_cos_abs(ax, 1);
+    trig_fallback(x, ax, v, f32::cos)
+}
+
+/// tan x: the odd quadrants use tan(r + π/2) = -1/tan r.
+#[inline(always)]
+pub(crate) fn tan<W: Wide>(x: W) -> W {
+    let ax = abs(x);
+    let (r, n) = reduce_pio2(ax);
+    let z = r * r;
+    let t = (r * z).fma(horner(z, TAN_T), r);
+    let odd = W::from_bits((n << 31) >> 31);
+    let v = W::select(odd, k::<W>(-1.0) / t, t);
+    let v = xor_sign(v, sign_bit(x));
+    trig_fallback(x, ax, v, f32::tan)
+}
+
+/// asin t = t + t³·A(t²), t in [0, 0.6] ("asin A", degree 7, error 1.6e-9).
+const ASIN_A: [f32; 8] = [
+    1.666666716e-1,
+    7.500012219e-2,
+    4.463566095e-2,
+    3.053795733e-2,
+    2.073754929e-2,
+    2.641756274e-2,
+    -1.255851798e-2,
+    4.726486281e-2,
+];
+
+/// For a = |x| <= 1: `(p, big)` with p = asin(a) when `big` is clear, and
+/// p = asin(√((1-a)/2)) (so that asin a = π/2 - 2p) when `big` (a > 0.6) is set. The switch
+/// sits at 0.6 rather than 0.5 so that π/2 - 2p cancels at most 1.44× (2× at 0.5).
+#[inline(always)]
+fn asin_core<W: Wide>(a: W) -> (W, W) {
+    let big = k::<W>(0.6).lt(a);
+    let z = W::select(big, (k::<W>(1.0) - a) * k(0.5), a * a);
+    let t = W::select(big, z.sqrt(), a);
+    let p = (t * z).fma(horner(z, ASIN_A), t);
+    (p, big)
+}
+
+/// asin x (NaN outside [-1, 1]).
+#[inline(always)]
+pub(crate) fn asin<W: Wide>(x: W) -> W {
+    let ax = abs(x);
+    let (p, big) = asin_core(ax);
+    // π/2 - 2p with π/2 as hi + lo.
+    let v = W::select(big, k::<W>(PIO2_1) - p.fma(k(2.0), k(-PIO2_LO)), p);
+    let v = W::select(k::<W>(1.0).lt(ax), k(f32::NAN), v);
+    xor_sign(v, sign_bit(x))
+}
+
+/// acos x (NaN outside [-1, 1]).
+#[inline(always)]
+pub(crate) fn acos<W: Wide>(x: W) -> W {
+    let ax = abs(x);
+    let (p, big) = asin_core(ax);
+    let neg = x.lt(k(0.0));
+    // |x| <= 0.6: π/2 - asin x; x > 0.6: 2p; x < -0.6: π - 2p.
+    let small = k::<W>(PIO2_1) - (xor_sign(p, sign_bit(x)) - k(PIO2_LO));
+    let big_pos = p * k(2.0);
+    let big_neg = k::<W>(PI_HI) - p.fma(k(2.0), k(-PI_LO));
+    let v = W::select(big, W::select(neg, big_neg, big_pos), small);
+    W::select(k::<W>(1.0).lt(ax), k(f32::NAN), v)
+}
+
+/// atan t = t + t³·P(t²), t in [0, 1] ("atan P", degree 9, error 1.7e-8).
+const ATAN_P: [f32; 10] = [
+    -3.333333433e-1,
+    1.999994963e-1,
+    -1.428400427e-1,
+    1.108826175e-1,
+    -8.931826800e-2,
+    7.031913847e-2,
+    -4.896051437e-2,
+    2.630500123e-2,
+    -9.144629352e-3,
+    1.488691894e-3,
+];
+
+/// atan(ay / ax) in [0, π/2] for ay, ax >= 0, from the ratio min/max <= 1 (one division).
+/// 0/0 and inf/inf give NaN (callers fix them); other infinities work out.
+#[inline(always)]
+fn atan_ratio<W: Wide>(ay: W, ax: W) -> W {
+    let swap = ax.lt(ay);
+    let w = W::select(swap, ax, ay) / W::select(swap, ay, ax);
+    let z = w * w;
+    let p = (w * z).fma(horner(z, ATAN_P), w);
+    W::select(swap, k::<W>(PIO2_1) - (p - k(PIO2_LO)), p)
+}
+
+/// atan x.
+#[inline(always)]
+pub(crate) fn atan<W: Wide>(x: W) -> W {
+    xor_sign(atan_ratio(abs(x), k(1.0)), sign_bit(x))
+}
+
+/// atan2(y, x) with the C99 special cases.
+#[inline(always)]
+pub(crate) fn atan2<W: Wide>(y: W, x: W) -> W {
+    let ax = abs(x);
+    let ay = abs(y);
+    let t = atan_ratio(ay, ax);
+    let inf = k::<W>(f32::INFINITY);
+    let t = W::select(ay.eq(k(0.0)) & ax.eq(k(0.0)), k(0.0), t);
+    let t = W::select(ay.eq(inf) & ax.eq(inf), k(core::f32::consts::FRAC_PI_4), t);
+    // x negative (including -0): reflect into the left half plane, π - t.
+    let x_neg = W::from_bits(x.bits() >> 31);
+    let t = W::select(x_neg, k::<W>(PI_HI) - (t - k(PI_LO)), t);
+    xor_sign(t, sign_bit(y))
+}
