@@ -160,6 +160,16 @@ impl<F: ShadingFloat> ShadingFloat for Dual<F> {
     }
 
     #[inline(always)]
+    fn load(src: &[f32]) -> Self {
+        Self::constant(F::load(src))
+    }
+
+    #[inline(always)]
+    fn store(self, dst: &mut [f32]) {
+        self.val.store(dst);
+    }
+
+    #[inline(always)]
     fn select(m: F::Mask, a: Self, b: Self) -> Self {
         Self {
             val: F::select(m, a.val, b.val),

@@ -234,6 +234,12 @@ impl<F: ShadingFloat> ShadingFloat for Interval<F> {
         }
     }
 
+    #[inline(always)]
+    fn load(src: &[f32]) -> Self {
+        // f32 data is exact in any inner precision of at least f32.
+        Self::point(F::load(src))
+    }
+
     /// Surely-true lanes take `a`, surely-false lanes `b`, "maybe" lanes the hull of both.
     #[inline(always)]
     fn select(m: IMask<F::Mask>, a: Self, b: Self) -> Self {

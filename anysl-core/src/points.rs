@@ -42,8 +42,9 @@ pub struct PointSet {
     data: Vec<Vec<f32>>,
 }
 
-/// Field indices into [`PointSet`] arrays.
-mod field {
+/// Field indices into [`PointSet`] arrays ([`PointSet::field`]); triples take 3 slots.
+#[allow(missing_docs)]
+pub mod field {
     pub const P: usize = 0;
     pub const N: usize = 3;
     pub const I: usize = 6;
@@ -129,7 +130,7 @@ impl PointSet {
         self.n == 0
     }
 
-    /// Raw array `k` (see the field layout in the source).
+    /// Raw array `k` (indices in [`field`]).
     #[must_use]
     pub fn field(&self, k: usize) -> &[f32] {
         &self.data[k]

@@ -215,6 +215,15 @@ macro_rules! simd_width {
                 Self::from(core::array::from_fn::<f32, $lanes, _>(|i| lanes[i] as f32))
             }
             #[inline(always)]
+            fn load(src: &[f32]) -> Self {
+                let arr: [f32; $lanes] = src[..$lanes].try_into().expect("LANES values");
+                Self::from(arr)
+            }
+            #[inline(always)]
+            fn store(self, dst: &mut [f32]) {
+                dst[..$lanes].copy_from_slice(&self.to_array());
+            }
+            #[inline(always)]
             fn select(m: $M, a: Self, b: Self) -> Self {
                 Self(m.0.select(a.0, b.0))
             }
