@@ -1,1 +1,3 @@
-//! Cross-crate integration tests live in `tests/`; this library is empty on purpose.
+//! Cross-crate integration tests live in `tests/`. This library only compiles the README's
+//! code examples as doctests, so the documentation cannot drift from the API.
+#![doc = include_str!("../../README.md")]
