@@ -37,6 +37,6 @@ pub use exec::{Exec, INTERVAL_LOOP_LIMIT};
 pub use float::{Blend, LatticeBits, Mask, ShadingFloat};
 pub use shader::{
     DisplacementShader, LightShader, ParamError, ParamField, ParamInfo, ParamType, ParamValue,
-    Shader, ShaderKind, ShaderMeta, Storage, SurfaceShader,
+    Shader, ShaderKind, ShaderMeta, Storage, SurfaceShader, SurfaceVisitor,
 };
 pub use vec::{Color, Matrix4, Vec3};

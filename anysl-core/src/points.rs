@@ -9,7 +9,7 @@
 use crate::context::{Globals, PointContext};
 use crate::exec::Exec;
 use crate::float::ShadingFloat;
-use crate::shader::{LightShader, SurfaceShader};
+use crate::shader::{LightShader, SurfaceShader, SurfaceVisitor};
 use crate::vec::{Color, Vec3};
 
 /// A small, fast, reproducible generator (SplitMix64).
@@ -215,26 +215,39 @@ where
 }
 
 /// Shades every point of `set` with instantiation `F`, storing lane values as f32 (the
-/// value part for duals, the midpoint for intervals).
-#[inline(never)]
+/// value part for duals, the midpoint for intervals). The loop is monomorphized per concrete
+/// shader through [`SurfaceShader::visit`], so a closed set of shaders pays its `match` once.
 pub fn shade_points<F, S, L>(shader: &S, lights: &[L], set: &PointSet, out: &mut ShadeOut<f32>)
 where
     F: ShadingFloat,
     S: SurfaceShader,
     L: LightShader,
 {
-    let [cr, cg, cb, or, og, ob] = &mut out.channels;
-    let mut i = 0;
-    while i + F::LANES <= set.len() {
-        let (ci, oi) = shade_chunk::<F, S, L>(shader, lights, set, i);
-        ci.r.store(&mut cr[i..]);
-        ci.g.store(&mut cg[i..]);
-        ci.b.store(&mut cb[i..]);
-        oi.r.store(&mut or[i..]);
-        oi.g.store(&mut og[i..]);
-        oi.b.store(&mut ob[i..]);
-        i += F::LANES;
+    struct Job<'a, F, L> {
+        lights: &'a [L],
+        set: &'a PointSet,
+        out: &'a mut ShadeOut<f32>,
+        _f: core::marker::PhantomData<F>,
     }
+    impl<F: ShadingFloat, L: LightShader> SurfaceVisitor for Job<'_, F, L> {
+        type Output = ();
+        #[inline(never)]
+        fn visit<S: SurfaceShader>(self, shader: &S) {
+            let [cr, cg, cb, or, og, ob] = &mut self.out.channels;
+            let mut i = 0;
+            while i + F::LANES <= self.set.len() {
+                let (ci, oi) = shade_chunk::<F, S, L>(shader, self.lights, self.set, i);
+                ci.r.store(&mut cr[i..]);
+                ci.g.store(&mut cg[i..]);
+                ci.b.store(&mut cb[i..]);
+                oi.r.store(&mut or[i..]);
+                oi.g.store(&mut og[i..]);
+                oi.b.store(&mut ob[i..]);
+                i += F::LANES;
+            }
+        }
+    }
+    shader.visit(Job::<F, L> { lights, set, out, _f: core::marker::PhantomData });
 }
 
 /// Shades every point with instantiation `F`, keeping full lane values as f64 (used for
@@ -245,19 +258,30 @@ where
     S: SurfaceShader,
     L: LightShader,
 {
-    let mut out = ShadeOut::<f64>::new(set.len());
-    let mut i = 0;
-    while i + F::LANES <= set.len() {
-        let (ci, oi) = shade_chunk::<F, S, L>(shader, lights, set, i);
-        let vals = [ci.r, ci.g, ci.b, oi.r, oi.g, oi.b];
-        for (ch, v) in vals.iter().enumerate() {
-            for l in 0..F::LANES {
-                out.channels[ch][i + l] = v.lane(l);
-            }
-        }
-        i += F::LANES;
+    struct Job<'a, F, L> {
+        lights: &'a [L],
+        set: &'a PointSet,
+        _f: core::marker::PhantomData<F>,
     }
-    out
+    impl<F: ShadingFloat, L: LightShader> SurfaceVisitor for Job<'_, F, L> {
+        type Output = ShadeOut<f64>;
+        fn visit<S: SurfaceShader>(self, shader: &S) -> ShadeOut<f64> {
+            let mut out = ShadeOut::<f64>::new(self.set.len());
+            let mut i = 0;
+            while i + F::LANES <= self.set.len() {
+                let (ci, oi) = shade_chunk::<F, S, L>(shader, self.lights, self.set, i);
+                let vals = [ci.r, ci.g, ci.b, oi.r, oi.g, oi.b];
+                for (ch, v) in vals.iter().enumerate() {
+                    for l in 0..F::LANES {
+                        out.channels[ch][i + l] = v.lane(l);
+                    }
+                }
+                i += F::LANES;
+            }
+            out
+        }
+    }
+    shader.visit(Job::<F, L> { lights, set, _f: core::marker::PhantomData })
 }
 
 /// Absolute-error statistics of `got` against `reference` over all points and channels:

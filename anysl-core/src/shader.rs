@@ -323,6 +323,26 @@ pub trait SurfaceShader: Shader {
     /// Shades the points of `ctx` (live lanes in `e`). Generic in the number type: this is
     /// where type replacement happens.
     fn shade<F: ShadingFloat, C: ShadingContext<F>>(&self, ctx: &mut C, e: &mut Exec<F>) -> SurfaceOutput<F>;
+
+    /// Runs `v` on the concrete shader. A closed set of shaders (an enum dispatching by
+    /// `match`) overrides this to pass its variant, so a renderer's whole inner loop is
+    /// monomorphized — and the shader inlined into it — per concrete shader, with the `match`
+    /// paid once per loop instead of once per shading call.
+    #[inline(always)]
+    fn visit<V: SurfaceVisitor>(&self, v: V) -> V::Output
+    where
+        Self: Sized,
+    {
+        v.visit(self)
+    }
+}
+
+/// Generic code to run on a concrete surface shader (see [`SurfaceShader::visit`]).
+pub trait SurfaceVisitor {
+    /// What the visit returns.
+    type Output;
+    /// Runs on shader `s`.
+    fn visit<S: SurfaceShader>(self, s: &S) -> Self::Output;
 }
 
 /// A light shader: the light's colour and direction as seen from surface points `ps`.

@@ -5,7 +5,7 @@
 use crate::lights::{AmbientLight, DistantLight, PointLight, SpotLight};
 use crate::surfaces::{Brick, Checker, Glass, Granite, Parquet, Plastic, Screen, Starball, Venus, Wood};
 use anysl_core::prelude::*;
-use anysl_core::{ParamError, ParamValue, ShaderMeta};
+use anysl_core::{ParamError, ParamValue, ShaderMeta, SurfaceVisitor};
 
 /// Forwards `Shader` and one generic shading method of an enum to its variants.
 macro_rules! closed_set {
@@ -129,6 +129,22 @@ impl SurfaceShader for Surface {
             Self::Wood(s) => s.shade(ctx, e),
         }
     }
+
+    #[inline(always)]
+    fn visit<V: SurfaceVisitor>(&self, v: V) -> V::Output {
+        match self {
+            Self::Brick(s) => v.visit(s),
+            Self::Checker(s) => v.visit(s),
+            Self::Glass(s) => v.visit(s),
+            Self::Granite(s) => v.visit(s),
+            Self::Parquet(s) => v.visit(s),
+            Self::Plastic(s) => v.visit(s),
+            Self::Screen(s) => v.visit(s),
+            Self::Starball(s) => v.visit(s),
+            Self::Venus(s) => v.visit(s),
+            Self::Wood(s) => v.visit(s),
+        }
+    }
 }
 
 closed_set! {
@@ -174,7 +190,7 @@ impl Light {
 }
 
 impl LightShader for Light {
-    #[inline]
+    #[inline(always)]
     fn light<F: ShadingFloat>(&self, e: &mut Exec<F>, ps: Vec3<F>) -> LightOutput<F> {
         match self {
             Self::Point(l) => l.light(e, ps),

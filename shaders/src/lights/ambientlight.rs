@@ -14,7 +14,7 @@ anysl_core::shader_params! {
 }
 
 impl LightShader for AmbientLight {
-    #[inline]
+    #[inline(always)]
     fn light<F: ShadingFloat>(&self, _e: &mut Exec<F>, _ps: Vec3<F>) -> LightOutput<F> {
         let cl = Color::from_array(self.lightcolor) * F::c(self.intensity);
         LightOutput { cl, l: Vec3::zero(), lit: F::Mask::splat(true), emission: Emission::Ambient }

@@ -17,7 +17,7 @@ anysl_core::shader_params! {
 }
 
 impl LightShader for DistantLight {
-    #[inline]
+    #[inline(always)]
     fn light<F: ShadingFloat>(&self, _e: &mut Exec<F>, _ps: Vec3<F>) -> LightOutput<F> {
         let (l, lit) = solar(Vec3::from_array(self.to) - Vec3::from_array(self.from));
         let cl = Color::from_array(self.lightcolor) * F::c(self.intensity);

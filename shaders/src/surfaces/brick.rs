@@ -61,7 +61,7 @@ impl Brick {
 }
 
 impl SurfaceShader for Brick {
-    #[inline]
+    #[inline(always)]
     fn shade<F: ShadingFloat, C: ShadingContext<F>>(&self, ctx: &mut C, e: &mut Exec<F>) -> SurfaceOutput<F> {
         let g = *ctx.globals();
         let (nf, v) = view_frame(&g);

@@ -50,7 +50,7 @@ impl Checker {
 }
 
 impl SurfaceShader for Checker {
-    #[inline]
+    #[inline(always)]
     fn shade<F: ShadingFloat, C: ShadingContext<F>>(&self, ctx: &mut C, e: &mut Exec<F>) -> SurfaceOutput<F> {
         let g = *ctx.globals();
         let (nf, v) = view_frame(&g);

@@ -32,7 +32,7 @@ anysl_core::shader_params! {
 }
 
 impl SurfaceShader for Glass {
-    #[inline]
+    #[inline(always)]
     fn shade<F: ShadingFloat, C: ShadingContext<F>>(&self, ctx: &mut C, e: &mut Exec<F>) -> SurfaceOutput<F> {
         let g = *ctx.globals();
         let (nf, v) = view_frame(&g);

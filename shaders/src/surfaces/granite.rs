@@ -56,7 +56,7 @@ impl Granite {
 }
 
 impl SurfaceShader for Granite {
-    #[inline]
+    #[inline(always)]
     fn shade<F: ShadingFloat, C: ShadingContext<F>>(&self, ctx: &mut C, e: &mut Exec<F>) -> SurfaceOutput<F> {
         let g = *ctx.globals();
         let (nf, v) = view_frame(&g);

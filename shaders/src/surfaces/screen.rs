@@ -37,7 +37,7 @@ impl Screen {
 }
 
 impl SurfaceShader for Screen {
-    #[inline]
+    #[inline(always)]
     fn shade<F: ShadingFloat, C: ShadingContext<F>>(&self, ctx: &mut C, e: &mut Exec<F>) -> SurfaceOutput<F> {
         let g = *ctx.globals();
         let mut out = SurfaceOutput { Ci: Color::zero(), Oi: Color::zero() };

@@ -74,7 +74,7 @@ impl Venus {
 }
 
 impl SurfaceShader for Venus {
-    #[inline]
+    #[inline(always)]
     fn shade<F: ShadingFloat, C: ShadingContext<F>>(&self, ctx: &mut C, e: &mut Exec<F>) -> SurfaceOutput<F> {
         let g = *ctx.globals();
         let (nf, _) = view_frame(&g);

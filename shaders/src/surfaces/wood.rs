@@ -51,7 +51,7 @@ impl Wood {
 }
 
 impl SurfaceShader for Wood {
-    #[inline]
+    #[inline(always)]
     fn shade<F: ShadingFloat, C: ShadingContext<F>>(&self, ctx: &mut C, e: &mut Exec<F>) -> SurfaceOutput<F> {
         let g = *ctx.globals();
         let (nf, v) = view_frame(&g);

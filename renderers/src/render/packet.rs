@@ -1,0 +1,201 @@
+//! The *packet* renderer (RTfact-like): coherent packets of primary rays over small pixel
+//! blocks (4 rays = 2×2, 8 = 4×2, 16 = 4×4), traced lane by lane through the BVH, then
+//! **shaded together**: the hits are gathered into the structure-of-arrays globals of a
+//! SIMD [`ShadingFloat`] and each surface shader present in the packet runs once, masked to
+//! its lanes ([`crate::shading::shade_lanes`]). The same packets can be split and shaded
+//! lane by lane with `f32` (the AnySL paper's "Scalar" column) or `f64` (the accuracy
+//! reference): [`render_packet_split`].
+
+use super::{render_bands, sample_offset, RenderOptions};
+use crate::image::Image;
+use crate::scene::{Scene, SurfaceHit};
+use crate::shading::{shade_lanes, Depth, Lanes, Tracer, MAX_LANES};
+use anysl_core::{LightShader, ShadingFloat, SurfaceShader};
+use glam::Vec3A;
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::time::{Duration, Instant};
+
+/// Where a packet render spent its time: the AnySL paper compares *shading* time, which
+/// tracing would otherwise hide.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct PacketStats {
+    /// Wall-clock time of the whole render.
+    pub total: Duration,
+    /// Time inside shading (summed over threads): gathering globals, running the shaders
+    /// and everything they call (shadow and secondary rays included).
+    pub shading: Duration,
+    /// Camera-ray hits shaded.
+    pub shaded_points: u64,
+}
+
+/// The pixel block `(columns, rows)` covered by a packet of `lanes` rays.
+#[must_use]
+pub fn packet_shape(lanes: usize) -> (u32, u32) {
+    match lanes {
+        4 => (2, 2),
+        8 => (4, 2),
+        16 => (4, 4),
+        n => (n as u32, 1),
+    }
+}
+
+/// Renders `scene` with packets of `F::LANES` rays shaded together as `F`.
+///
+/// # Panics
+/// When `F::LANES` exceeds [`MAX_LANES`].
+#[must_use]
+pub fn render_packet<F, S, L>(scene: &Scene<S, L>, opts: &RenderOptions) -> Image
+where
+    F: ShadingFloat,
+    S: SurfaceShader,
+    L: LightShader,
+{
+    render_packet_split::<F, S, L>(scene, opts, F::LANES)
+}
+
+/// [`render_packet_split`] that also measures where the time went.
+///
+/// # Panics
+/// As [`render_packet_split`].
+#[must_use]
+pub fn render_packet_stats<F, S, L>(scene: &Scene<S, L>, opts: &RenderOptions, packet_lanes: usize) -> (Image, PacketStats)
+where
+    F: ShadingFloat,
+    S: SurfaceShader,
+    L: LightShader,
+{
+    let shading_ns = AtomicU64::new(0);
+    let points = AtomicU64::new(0);
+    let start = Instant::now();
+    let image = packet_render::<F, S, L>(scene, opts, packet_lanes, Some((&shading_ns, &points)));
+    let stats = PacketStats {
+        total: start.elapsed(),
+        shading: Duration::from_nanos(shading_ns.into_inner()),
+        shaded_points: points.into_inner(),
+    };
+    (image, stats)
+}
+
+/// Renders `scene` with packets of `packet_lanes` rays, each packet shaded `F::LANES` lanes at
+/// a time: `render_packet_split::<f32, _, _>(scene, opts, 4)` is the paper's scalar
+/// shading of SSE-traced packets.
+///
+/// # Panics
+/// When `packet_lanes` exceeds [`MAX_LANES`] or is not a multiple of `F::LANES`.
+#[must_use]
+pub fn render_packet_split<F, S, L>(scene: &Scene<S, L>, opts: &RenderOptions, packet_lanes: usize) -> Image
+where
+    F: ShadingFloat,
+    S: SurfaceShader,
+    L: LightShader,
+{
+    packet_render::<F, S, L>(scene, opts, packet_lanes, None)
+}
+
+/// The packet renderer; `stats` = (shading nanoseconds, shaded points) to measure into.
+fn packet_render<F, S, L>(
+    scene: &Scene<S, L>,
+    opts: &RenderOptions,
+    packet_lanes: usize,
+    stats: Option<(&AtomicU64, &AtomicU64)>,
+) -> Image
+where
+    F: ShadingFloat,
+    S: SurfaceShader,
+    L: LightShader,
+{
+    assert!(
+        (1..=MAX_LANES).contains(&packet_lanes) && packet_lanes.is_multiple_of(F::LANES),
+        "packets of {packet_lanes} rays cannot be shaded {} lanes at a time (at most {MAX_LANES})",
+        F::LANES
+    );
+    let cam = &scene.camera;
+    let (width, height) = (cam.width(), cam.height());
+    let (bw, bh) = packet_shape(packet_lanes);
+    let n = opts.grid();
+    let weight = 1.0 / (n * n) as f32;
+    let footprint = 1.0 / n as f32;
+    let tracer = Tracer { scene, shadows: opts.shadows };
+    let band_rows = 8u32.max(bh);
+    let label = format!("packet {}×{} {}", bw, bh, F::NAME);
+
+    render_bands(width, height, band_rows, opts, &label, |y0, pixels| {
+        let rows = (pixels.len() / width as usize) as u32;
+        let mut hits = [SurfaceHit::default(); MAX_LANES];
+        let mut dirs = [Vec3A::Z; MAX_LANES];
+        let mut out = [[0.0f32; MAX_LANES]; 3];
+        let (mut band_ns, mut band_points) = (0u64, 0u64);
+        for by in (0..rows).step_by(bh as usize) {
+            for bx in (0..width).step_by(bw as usize) {
+                let lane_pixel = |lane: usize| (bx + lane as u32 % bw, by + lane as u32 / bw);
+                // Lanes past the image edge stay inactive.
+                let mut active = 0u32;
+                for lane in 0..packet_lanes {
+                    let (px, py) = lane_pixel(lane);
+                    if px < width && py < rows {
+                        active |= 1 << lane;
+                    }
+                }
+                let mut acc = [[0.0f32; 3]; MAX_LANES];
+                for k in 0..n * n {
+                    let (ox, oy) = sample_offset(k, n);
+                    // Trace the packet.
+                    let mut hit = 0u32;
+                    for lane in 0..packet_lanes {
+                        if (active >> lane) & 1 == 0 {
+                            continue;
+                        }
+                        let (px, py) = lane_pixel(lane);
+                        let (d, ddx, ddy) = cam.ray_differential(px as f32 + ox, (y0 + py) as f32 + oy, footprint);
+                        dirs[lane] = d;
+                        let o = cam.position();
+                        if let Some(h) = scene.intersect(o, d, 0.0, f32::INFINITY) {
+                            hits[lane] = scene.surface_hit(&h, o, d, Some((ddx, ddy)));
+                            hit |= 1 << lane;
+                        }
+                    }
+                    // Shade it, F::LANES lanes at a time.
+                    let clock = stats.map(|_| Instant::now());
+                    for base in (0..packet_lanes).step_by(F::LANES) {
+                        let sub_active = (active >> base) & ((1u32 << F::LANES) - 1);
+                        if sub_active == 0 {
+                            continue;
+                        }
+                        let lanes = Lanes {
+                            hits: &hits[base..],
+                            dirs: &dirs[base..],
+                            active: sub_active,
+                            hit: hit >> base,
+                            camera: true,
+                        };
+                        let c = shade_lanes::<F, S, L>(tracer, &lanes, Depth::default());
+                        c.r.store(&mut out[0][base..]);
+                        c.g.store(&mut out[1][base..]);
+                        c.b.store(&mut out[2][base..]);
+                    }
+                    if let Some(t) = clock {
+                        band_ns += t.elapsed().as_nanos() as u64;
+                        band_points += u64::from(hit.count_ones());
+                    }
+                    for lane in 0..packet_lanes {
+                        if (active >> lane) & 1 != 0 {
+                            for ch in 0..3 {
+                                acc[lane][ch] += out[ch][lane];
+                            }
+                        }
+                    }
+                }
+                for (lane, sum) in acc.iter().enumerate().take(packet_lanes) {
+                    if (active >> lane) & 1 != 0 {
+                        let (px, py) = lane_pixel(lane);
+                        pixels[(py * width + px) as usize] = sum.map(|v| v * weight);
+                    }
+                }
+            }
+        }
+        if let Some((ns, points)) = stats {
+            ns.fetch_add(band_ns, Ordering::Relaxed);
+            points.fetch_add(band_points, Ordering::Relaxed);
+        }
+    })
+}

@@ -1,0 +1,323 @@
+//! [`Scene`]: camera, meshes placed by [`Instance`]s, surface shaders, lights and the sky —
+//! generic over the surface-shader type `S` and the light type `L`, so renderer code never
+//! names a concrete shader. Building a scene flattens every instance into world-space
+//! triangles and builds the BVH once.
+
+use crate::accel::{Accel, Hit};
+use crate::camera::Camera;
+use crate::mesh::Mesh;
+use glam::{Mat4, Vec2, Vec3A};
+use std::fmt;
+
+/// A mesh placed in the world with a surface shader.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Instance {
+    /// Index into the scene's meshes.
+    pub mesh: usize,
+    /// Index into the scene's surface shaders.
+    pub surface: usize,
+    /// Object-to-world transform (glam convention: column vectors, `p' = M · p`).
+    pub transform: Mat4,
+}
+
+/// What rays that leave the scene see: a vertical gradient from `horizon` (direction
+/// horizontal) to `zenith` (straight up or down), the same one [`anysl_core::PointContext`]
+/// uses. Camera rays that miss see it only when `visible_to_camera` is set (the AnySL
+/// workload wants black there).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sky {
+    /// Colour towards the horizon.
+    pub horizon: [f32; 3],
+    /// Colour straight up (and down).
+    pub zenith: [f32; 3],
+    /// Whether camera rays that miss everything show the sky (else black).
+    pub visible_to_camera: bool,
+}
+
+impl Default for Sky {
+    fn default() -> Self {
+        Self { horizon: [0.6, 0.6, 0.6], zenith: [0.2, 0.3, 0.8], visible_to_camera: false }
+    }
+}
+
+impl Sky {
+    /// The sky colour in direction `dir` (any length).
+    #[inline]
+    #[must_use]
+    pub fn color(&self, dir: Vec3A) -> [f32; 3] {
+        let d = dir.normalize_or_zero();
+        let t = d.y.abs().min(1.0);
+        [0, 1, 2].map(|c| self.horizon[c] + (self.zenith[c] - self.horizon[c]) * t)
+    }
+}
+
+/// Why a scene could not be built.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct SceneError(pub String);
+
+impl fmt::Display for SceneError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for SceneError {}
+
+/// One triangle of the flattened scene.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TriangleRef {
+    /// World-space vertex indices.
+    pub vertices: [u32; 3],
+    /// The instance it came from.
+    pub instance: u32,
+    /// Its surface shader.
+    pub surface: u32,
+}
+
+/// A renderable scene. Camera, shaders, lights and sky may be changed freely after
+/// construction; geometry is fixed (the BVH is built in [`Scene::new`]).
+pub struct Scene<S, L> {
+    /// The camera (its size is the image size).
+    pub camera: Camera,
+    /// Surface shaders, addressed by [`Instance::surface`].
+    pub surfaces: Vec<S>,
+    /// Light shaders.
+    pub lights: Vec<L>,
+    /// What escaping rays see.
+    pub sky: Sky,
+    instances: Vec<Instance>,
+    positions: Vec<Vec3A>,
+    normals: Vec<Vec3A>,
+    uvs: Vec<Vec2>,
+    triangles: Vec<TriangleRef>,
+    accel: Accel,
+}
+
+impl<S, L> Scene<S, L> {
+    /// Places `meshes` by `instances` in world space and builds the BVH.
+    ///
+    /// # Errors
+    /// An instance that names a missing mesh or surface shader, or a mesh whose normal or
+    /// texture-coordinate count differs from its position count.
+    pub fn new(
+        camera: Camera,
+        meshes: &[Mesh],
+        instances: Vec<Instance>,
+        surfaces: Vec<S>,
+        lights: Vec<L>,
+    ) -> Result<Self, SceneError> {
+        let (mut positions, mut normals, mut uvs, mut triangles) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+        for (k, inst) in instances.iter().enumerate() {
+            let mesh = meshes
+                .get(inst.mesh)
+                .ok_or_else(|| SceneError(format!("instance {k} uses mesh {} of {}", inst.mesh, meshes.len())))?;
+            if inst.surface >= surfaces.len() {
+                return Err(SceneError(format!("instance {k} uses surface {} of {}", inst.surface, surfaces.len())));
+            }
+            if mesh.normals.len() != mesh.positions.len() || mesh.uvs.len() != mesh.positions.len() {
+                return Err(SceneError(format!(
+                    "mesh {}: {} positions but {} normals and {} texture coordinates",
+                    inst.mesh,
+                    mesh.positions.len(),
+                    mesh.normals.len(),
+                    mesh.uvs.len()
+                )));
+            }
+            let base = positions.len() as u32;
+            let normal_matrix = inst.transform.inverse().transpose();
+            positions.extend(mesh.positions.iter().map(|p| Vec3A::from(inst.transform.transform_point3(*p))));
+            normals.extend(
+                mesh.normals.iter().map(|n| Vec3A::from(normal_matrix.transform_vector3(*n)).normalize_or_zero()),
+            );
+            uvs.extend_from_slice(&mesh.uvs);
+            for tri in &mesh.triangles {
+                if tri.iter().any(|&i| i as usize >= mesh.positions.len()) {
+                    return Err(SceneError(format!("mesh {}: triangle {tri:?} indexes past its vertices", inst.mesh)));
+                }
+                triangles.push(TriangleRef {
+                    vertices: tri.map(|i| base + i),
+                    instance: k as u32,
+                    surface: inst.surface as u32,
+                });
+            }
+        }
+        let world: Vec<[Vec3A; 3]> =
+            triangles.iter().map(|t| t.vertices.map(|i| positions[i as usize])).collect();
+        let accel = Accel::build(&world);
+        Ok(Self { camera, surfaces, lights, sky: Sky::default(), instances, positions, normals, uvs, triangles, accel })
+    }
+
+    /// The instances.
+    #[must_use]
+    pub fn instances(&self) -> &[Instance] {
+        &self.instances
+    }
+
+    /// The flattened triangles (index = [`Hit::prim`]).
+    #[must_use]
+    pub fn triangles(&self) -> &[TriangleRef] {
+        &self.triangles
+    }
+
+    /// The world-space vertices of triangle `prim`.
+    #[must_use]
+    pub fn triangle_vertices(&self, prim: u32) -> [Vec3A; 3] {
+        self.triangles[prim as usize].vertices.map(|i| self.positions[i as usize])
+    }
+
+    /// The BVH (and brute-force reference) over the triangles.
+    #[must_use]
+    pub fn accel(&self) -> &Accel {
+        &self.accel
+    }
+
+    /// The closest hit along `origin + t · dir`, `tmin < t < tmax`.
+    #[inline]
+    #[must_use]
+    pub fn intersect(&self, origin: Vec3A, dir: Vec3A, tmin: f32, tmax: f32) -> Option<Hit> {
+        self.accel.closest_hit(origin, dir, tmin, tmax)
+    }
+
+    /// The shading record of `hit` on the ray `origin + t · dir`; with `differential =
+    /// Some((∂dir/∂x, ∂dir/∂y))` (a ray from a fixed origin, as from a pinhole camera) it also
+    /// carries the screen-space derivatives of P, N, s and t.
+    #[inline]
+    #[must_use]
+    pub fn surface_hit(&self, hit: &Hit, origin: Vec3A, dir: Vec3A, differential: Option<(Vec3A, Vec3A)>) -> SurfaceHit {
+        let tri = &self.triangles[hit.prim as usize];
+        let [i0, i1, i2] = tri.vertices.map(|i| i as usize);
+        let (p0, p1, p2) = (self.positions[i0], self.positions[i1], self.positions[i2]);
+        let (n0, n1, n2) = (self.normals[i0], self.normals[i1], self.normals[i2]);
+        let (uv0, uv1, uv2) = (self.uvs[i0], self.uvs[i1], self.uvs[i2]);
+        let (b1, b2) = (hit.b1, hit.b2);
+        let b0 = 1.0 - b1 - b2;
+        let e1 = p1 - p0;
+        let e2 = p2 - p0;
+        let p = p0 * b0 + p1 * b1 + p2 * b2;
+        let mut ng = e1.cross(e2).normalize_or_zero();
+        let n_raw = n0 * b0 + n1 * b1 + n2 * b2;
+        let n_len = n_raw.length();
+        let n = if n_len > 0.0 { n_raw / n_len } else { ng };
+        if ng.dot(n) < 0.0 {
+            ng = -ng;
+        }
+        let uv = uv0 * b0 + uv1 * b1 + uv2 * b2;
+
+        // ∂P/∂u, ∂P/∂v from the triangle's (s, t) parameterization (pbrt's construction).
+        let duv02 = uv0 - uv2;
+        let duv12 = uv1 - uv2;
+        let dp02 = p0 - p2;
+        let dp12 = p1 - p2;
+        let det = duv02.x * duv12.y - duv02.y * duv12.x;
+        let (dpdu, dpdv) = if det.abs() > 1e-12 {
+            let inv = 1.0 / det;
+            ((dp02 * duv12.y - dp12 * duv02.y) * inv, (dp12 * duv02.x - dp02 * duv12.x) * inv)
+        } else {
+            let a = ng.any_orthonormal_vector();
+            (a, ng.cross(a))
+        };
+
+        let mut sh = SurfaceHit {
+            p,
+            n,
+            ng,
+            i: p - origin,
+            e: origin,
+            s: uv.x,
+            t: uv.y,
+            dpdu,
+            dpdv,
+            surface: tri.surface,
+            ..SurfaceHit::default()
+        };
+
+        if let Some((ddx, ddy)) = differential {
+            // Offset rays from the same origin meet the tangent plane at p + dP/dx, p + dP/dy.
+            let plane_d = ng.dot(p - origin);
+            let transfer = |dd: Vec3A| {
+                let dir2 = dir + dd;
+                let denom = ng.dot(dir2);
+                if denom.abs() < 1e-12 {
+                    Vec3A::ZERO
+                } else {
+                    origin + dir2 * (plane_d / denom) - p
+                }
+            };
+            let (dpdx, dpdy) = (transfer(ddx), transfer(ddy));
+            // Barycentric derivatives: dP = db1·e1 + db2·e2 (least squares in the plane).
+            let (a11, a12, a22) = (e1.dot(e1), e1.dot(e2), e2.dot(e2));
+            let gdet = a11 * a22 - a12 * a12;
+            let bary = |dp: Vec3A| -> (f32, f32) {
+                if gdet.abs() < 1e-30 {
+                    return (0.0, 0.0);
+                }
+                let (r1, r2) = (e1.dot(dp), e2.dot(dp));
+                ((a22 * r1 - a12 * r2) / gdet, (a11 * r2 - a12 * r1) / gdet)
+            };
+            let (db1x, db2x) = bary(dpdx);
+            let (db1y, db2y) = bary(dpdy);
+            let (duv1, duv2) = (uv1 - uv0, uv2 - uv0);
+            let dn1 = n1 - n0;
+            let dn2 = n2 - n0;
+            let dnorm = |dn_raw: Vec3A| if n_len > 0.0 { (dn_raw - n * n.dot(dn_raw)) / n_len } else { Vec3A::ZERO };
+            sh.dpdx = dpdx;
+            sh.dpdy = dpdy;
+            sh.dndx = dnorm(dn1 * db1x + dn2 * db2x);
+            sh.dndy = dnorm(dn1 * db1y + dn2 * db2y);
+            sh.dsdx = duv1.x * db1x + duv2.x * db2x;
+            sh.dsdy = duv1.x * db1y + duv2.x * db2y;
+            sh.dtdx = duv1.y * db1x + duv2.y * db2x;
+            sh.dtdy = duv1.y * db1y + duv2.y * db2y;
+            sh.du = sh.dsdx.abs().max(sh.dsdy.abs());
+            sh.dv = sh.dtdx.abs().max(sh.dtdy.abs());
+        }
+        sh
+    }
+}
+
+/// Everything a surface shader sees at one hit, in world space, plus the screen-space
+/// derivative seeds (zero for rays without differentials). `u`, `v` are the mesh's texture
+/// coordinates, like `s`, `t`.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SurfaceHit {
+    /// Position.
+    pub p: Vec3A,
+    /// Interpolated, normalized shading normal.
+    pub n: Vec3A,
+    /// Geometric normal (unit, on the side of `n`).
+    pub ng: Vec3A,
+    /// Incident vector `p - e`.
+    pub i: Vec3A,
+    /// Ray origin.
+    pub e: Vec3A,
+    /// Texture coordinate s (= u).
+    pub s: f32,
+    /// Texture coordinate t (= v).
+    pub t: f32,
+    /// RSL `du`: the larger of |∂s/∂x|, |∂s/∂y|.
+    pub du: f32,
+    /// RSL `dv`: the larger of |∂t/∂x|, |∂t/∂y|.
+    pub dv: f32,
+    /// ∂P/∂u.
+    pub dpdu: Vec3A,
+    /// ∂P/∂v.
+    pub dpdv: Vec3A,
+    /// ∂P/∂x (screen space; also ∂I/∂x for a fixed eye).
+    pub dpdx: Vec3A,
+    /// ∂P/∂y.
+    pub dpdy: Vec3A,
+    /// ∂N/∂x.
+    pub dndx: Vec3A,
+    /// ∂N/∂y.
+    pub dndy: Vec3A,
+    /// ∂s/∂x.
+    pub dsdx: f32,
+    /// ∂s/∂y.
+    pub dsdy: f32,
+    /// ∂t/∂x.
+    pub dtdx: f32,
+    /// ∂t/∂y.
+    pub dtdy: f32,
+    /// Surface shader index.
+    pub surface: u32,
+}
