@@ -161,10 +161,44 @@ pub fn solar<F: ShadingFloat>(axis: Vec3<F>) -> (Vec3<F>, F::Mask) {
 /// everything, including zero-length `dir`).
 #[inline(always)]
 pub fn in_cone<F: ShadingFloat>(dir: Vec3<F>, axis: Vec3<F>, angle: F) -> F::Mask {
-    let cosang = angle.min(F::c(core::f64::consts::PI)).cos();
-    let d = dir.dot(axis);
-    let len = (dir.length_squared() * axis.length_squared()).sqrt();
-    d.ge(cosang * len) | angle.ge(F::c(core::f64::consts::PI))
+    ConeTest::new(axis, angle).contains(dir)
+}
+
+/// A cone test prepared once (the cosine of the half-angle) and applied to many directions
+/// without a square root: `dir·axis ≥ cos(angle)·|dir|·|axis|` is decided on squares.
+#[derive(Clone, Copy, Debug)]
+pub struct ConeTest<F: ShadingFloat> {
+    axis: Vec3<F>,
+    /// `cos²(angle)·|axis|²`.
+    c2a2: F,
+    /// `cos(angle) >= 0` (a cone no wider than a hemisphere).
+    narrow: F::Mask,
+    /// `angle >= π`: everything.
+    all: F::Mask,
+}
+
+impl<F: ShadingFloat> ConeTest<F> {
+    /// The cone of half-angle `angle` around `axis`.
+    #[inline(always)]
+    #[must_use]
+    pub fn new(axis: Vec3<F>, angle: F) -> Self {
+        let pi = F::c(core::f64::consts::PI);
+        let c = angle.min(pi).cos();
+        Self { axis, c2a2: c * c * axis.length_squared(), narrow: c.ge(F::c(0.0)), all: angle.ge(pi) }
+    }
+    /// Lanes whose `dir` lies inside the cone.
+    #[inline(always)]
+    #[must_use]
+    pub fn contains(&self, dir: Vec3<F>) -> F::Mask {
+        let d = dir.dot(self.axis);
+        let front = d.ge(F::c(0.0));
+        let dd = d * d;
+        let rhs = self.c2a2 * dir.length_squared();
+        // c ≥ 0: front and d² ≥ c²|dir|²|axis|²; c < 0: front or d² ≤ c²|dir|²|axis|². Written
+        // so a surely-front, surely-outside-the-band direction is surely inside for intervals.
+        let inside = (front & (dd.ge(rhs) | !self.narrow)) | (!self.narrow & dd.le(rhs));
+        inside | self.all
+    }
 }
 
 /// The renderer's side of shading: globals and the constructs that need the scene.
@@ -208,6 +242,7 @@ pub fn run_illuminance<F, L, V, B>(
     V: FnMut(F::Mask, Vec3<F>, &LightOutput<F>) -> Option<Color<F>>,
     B: FnMut(&mut Exec<F>, Vec3<F>, Color<F>),
 {
+    let cone = cone.map(|(axis, angle)| ConeTest::new(axis, angle));
     for light in lights {
         let out = light.light(e, p);
         if out.emission == Emission::Ambient {
@@ -215,8 +250,8 @@ pub fn run_illuminance<F, L, V, B>(
         }
         let to_light = -out.l;
         let mut mask = e.mask() & out.lit;
-        if let Some((axis, angle)) = cone {
-            mask = mask & in_cone(to_light, axis, angle);
+        if let Some(c) = &cone {
+            mask = mask & c.contains(to_light);
         }
         if mask.none() {
             continue;
@@ -225,7 +260,7 @@ pub fn run_illuminance<F, L, V, B>(
             Some(v) => out.cl * v,
             None => out.cl,
         };
-        e.masked(mask, |e| body(e, to_light, cl));
+        e.masked(mask, #[inline(always)] |e| body(e, to_light, cl));
     }
 }
 

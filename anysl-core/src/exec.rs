@@ -20,7 +20,9 @@
 //!     let mut e = Exec::<F>::new();
 //!     let (mut i, mut sum) = (F::c(1.0), F::c(0.0));
 //!     e.loop_(|e| {
-//!         e.break_if(i.gt(n));
+//!         if e.break_if(i.gt(n)) {
+//!             return;
+//!         }
 //!         let term = F::c(1.0) / i;
 //!         e.break_if(term.lt(F::c(0.3)));
 //!         e.update(&mut sum, |s| s + term);
@@ -160,7 +162,7 @@ impl<F: ShadingFloat> Exec<F> {
     }
 
     /// A loop: `body` runs while some lane is live; leave it with [`Exec::break_if`] (a
-    /// `while (c)` is `loop_` whose body starts with `break_if(!c)`). Lanes taken out by
+    /// `while (c)` is `loop_` whose body starts with `if e.break_if(!c) { return; }`). Lanes taken out by
     /// [`Exec::continue_if`] come back at the next iteration.
     #[inline(always)]
     pub fn loop_(&mut self, mut body: impl FnMut(&mut Self)) {
@@ -205,8 +207,7 @@ impl<F: ShadingFloat> Exec<F> {
         mut step: impl FnMut(&mut Self, &mut S),
     ) {
         self.loop_(|e| {
-            e.break_if(!cond(state));
-            if e.is_idle() {
+            if e.break_if(!cond(state)) {
                 return;
             }
             body(e, state);
@@ -215,12 +216,15 @@ impl<F: ShadingFloat> Exec<F> {
         });
     }
 
-    /// RSL `break` for the lanes of `cond`: they leave the innermost loop.
+    /// RSL `break` for the lanes of `cond`: they leave the innermost loop. Returns true when
+    /// no lane is left live, so a `while` loop can skip the rest of its body:
+    /// `if e.break_if(!cond) { return; }`.
     #[inline(always)]
-    pub fn break_if(&mut self, cond: F::Mask) {
+    pub fn break_if(&mut self, cond: F::Mask) -> bool {
         let leaving = self.active & cond;
         self.broken = self.broken | leaving;
         self.active = self.active & !cond;
+        self.active.none()
     }
 
     /// RSL `continue` for the lanes of `cond`: they skip the rest of this iteration.

@@ -30,7 +30,7 @@ pub mod shader;
 pub mod vec;
 
 pub use context::{
-    illuminate, in_cone, run_illuminance, solar, sum_ambient, Emission, Globals, LightOutput,
+    illuminate, in_cone, run_illuminance, ConeTest, solar, sum_ambient, Emission, Globals, LightOutput,
     PointContext, ShadingContext, SurfaceOutput,
 };
 pub use exec::{Exec, INTERVAL_LOOP_LIMIT};

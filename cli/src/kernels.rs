@@ -39,6 +39,8 @@ pub struct KernelOpts {
     pub runs: usize,
     /// Shaders to run (all when empty).
     pub shaders: Vec<String>,
+    /// Instantiations to run (all when empty; `f32` always runs as the speedup base).
+    pub instantiations: Vec<String>,
 }
 
 type Runner = fn(&Surface, &[Light], &PointSet, &mut ShadeOut<f32>);
@@ -84,7 +86,15 @@ pub fn run(opts: &KernelOpts, progress: &indicatif::ProgressBar) -> Result<Vec<K
     };
     let lights = table1_lights();
     let set = PointSet::random(opts.points, 0x5eed_2010);
-    let insts = instantiations();
+    let all = instantiations();
+    let known: Vec<&str> = all.iter().map(|(n, _)| *n).chain(["native-f32x8"]).collect();
+    for want in &opts.instantiations {
+        if !known.contains(&want.as_str()) {
+            return Err(format!("unknown instantiation '{want}' (choices: {})", known.join(", ")));
+        }
+    }
+    let wanted = |n: &str| n == "f32" || opts.instantiations.is_empty() || opts.instantiations.iter().any(|w| w == n);
+    let insts: Vec<_> = all.into_iter().filter(|(n, _)| wanted(n)).collect();
     progress.set_length((names.len() * (insts.len() + 1)) as u64);
     let mut rows = Vec::new();
     for name in &names {
@@ -122,7 +132,7 @@ pub fn run(opts: &KernelOpts, progress: &indicatif::ProgressBar) -> Result<Vec<K
             push(inst, set.len() as f64 / secs, &out, &mut rows);
             progress.inc(1);
         }
-        if let Some(native) = crate::native::runner(&surface) {
+        if let Some(native) = crate::native::runner(&surface).filter(|_| wanted("native-f32x8")) {
             let mut out = ShadeOut::<f32>::new(set.len());
             let secs = time_median(opts.runs, || native(&surface, &lights, &set, &mut out));
             push("native-f32x8", set.len() as f64 / secs, &out, &mut rows);

@@ -46,6 +46,9 @@ enum BenchCommand {
         /// Only these shaders (repeatable).
         #[arg(long = "shader")]
         shaders: Vec<String>,
+        /// Only these instantiations (repeatable; `f32` always runs as the speedup base).
+        #[arg(long = "inst")]
+        instantiations: Vec<String>,
     },
 }
 
@@ -87,8 +90,8 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Demo { out } => demo(&out),
         Command::Bench { which } => match which {
-            BenchCommand::Kernels { json, points, runs, shaders } => {
-                bench_kernels(kernels::KernelOpts { points, runs, shaders }, json)
+            BenchCommand::Kernels { json, points, runs, shaders, instantiations } => {
+                bench_kernels(kernels::KernelOpts { points, runs, shaders, instantiations }, json)
             }
         },
     };
@@ -103,5 +106,5 @@ fn main() -> ExitCode {
 
 fn demo(out: &std::path::Path) -> Result<(), String> {
     let _ = out;
-    bench_kernels(kernels::KernelOpts { points: 8192, runs: 3, shaders: Vec::new() }, None)
+    bench_kernels(kernels::KernelOpts { points: 8192, runs: 3, shaders: Vec::new(), instantiations: Vec::new() }, None)
 }

@@ -47,9 +47,12 @@ impl Finish {
         v: Vec3<F>,
     ) -> LightSums<F> {
         let amb = ambient(ctx, e);
-        let diff = diffuse(ctx, e, nf);
-        // `Ks` is uniform: skipping the loop is a branch on a parameter, not on a lane.
-        let spec = if self.ks != 0.0 { specular(ctx, e, nf, v, F::c(self.roughness)) } else { Color::zero() };
+        // `Ks` is uniform: choosing the loop is a branch on a parameter, not on a lane.
+        let (diff, spec) = if self.ks != 0.0 {
+            diffuse_specular(ctx, e, nf, v, F::c(self.roughness))
+        } else {
+            (diffuse(ctx, e, nf), Color::zero())
+        };
         LightSums { amb, diff, spec }
     }
 

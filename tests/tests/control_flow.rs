@@ -15,7 +15,9 @@ fn program<F: ShadingFloat>(a: F, b: F, n: F) -> (F, F) {
     let mut acc = F::c(0.0);
     let mut i = F::c(0.0);
     e.loop_(|e| {
-        e.break_if(!i.lt(n));
+        if e.break_if(!i.lt(n)) {
+            return;
+        }
         e.if_else(x.gt(b), |e, then| {
             if then {
                 e.update(&mut x, |x| x - b * F::c(0.5));
@@ -79,7 +81,9 @@ fn idle_regions_are_skipped() {
     let mut iterations = 0;
     let mut i = F32x8::from_lanes(&[0.0, 1.0, 2.0, 3.0, 0.0, 0.0, 0.0, 0.0]);
     e.loop_(|e| {
-        e.break_if(i.ge(F32x8::c(4.0)));
+        if e.break_if(i.ge(F32x8::c(4.0))) {
+            return;
+        }
         iterations += 1;
         e.update(&mut i, |i| i + F32x8::c(1.0));
     });

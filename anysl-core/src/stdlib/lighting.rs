@@ -21,11 +21,37 @@ pub fn ambient<F: ShadingFloat, C: ShadingContext<F>>(ctx: &mut C, e: &Exec<F>) 
 pub fn diffuse<F: ShadingFloat, C: ShadingContext<F>>(ctx: &mut C, e: &mut Exec<F>, n: Vec3<F>) -> Color<F> {
     let p = ctx.globals().P;
     let mut c = Color::zero();
-    ctx.illuminance(e, "", p, Some((n, F::c(PI / 2.0))), |e, l, cl| {
+    ctx.illuminance(e, "", p, Some((n, F::c(PI / 2.0))), #[inline(always)] |e, l, cl| {
         let w = l.normalize().dot(n).max(F::c(0.0));
         e.update(&mut c, |c| c + cl * w);
     });
     c
+}
+
+/// `(diffuse(N), specular(N, V, roughness))` in one light loop: each light is evaluated and
+/// `L` normalized once for both sums (what `plastic`-like shaders need).
+#[inline(always)]
+#[must_use]
+pub fn diffuse_specular<F: ShadingFloat, C: ShadingContext<F>>(
+    ctx: &mut C,
+    e: &mut Exec<F>,
+    n: Vec3<F>,
+    v: Vec3<F>,
+    roughness: F,
+) -> (Color<F>, Color<F>) {
+    let p = ctx.globals().P;
+    let mut diff = Color::zero();
+    let mut spec = Color::zero();
+    let exponent = F::c(1.0) / roughness;
+    ctx.illuminance(e, "", p, Some((n, F::c(PI / 2.0))), #[inline(always)] |e, l, cl| {
+        let lu = l.normalize();
+        let ndl = lu.dot(n);
+        e.update(&mut diff, |d| d + cl * ndl.max(F::c(0.0)));
+        let h = (lu + v).normalize();
+        let s = n.dot(h).max(F::c(0.0)).pow(exponent);
+        e.update(&mut spec, |sp| sp + cl * F::select(ndl.gt(F::c(0.0)), s, F::c(0.0)));
+    });
+    (diff, spec)
 }
 
 /// Blinn's specular lobe for one light: `max(0, N·H)^(1/roughness)` with
@@ -52,7 +78,7 @@ pub fn specular<F: ShadingFloat, C: ShadingContext<F>>(
 ) -> Color<F> {
     let p = ctx.globals().P;
     let mut c = Color::zero();
-    ctx.illuminance(e, "", p, Some((n, F::c(PI / 2.0))), |e, l, cl| {
+    ctx.illuminance(e, "", p, Some((n, F::c(PI / 2.0))), #[inline(always)] |e, l, cl| {
         e.update(&mut c, |c| c + cl * specularbrdf(l, n, v, roughness));
     });
     c
@@ -71,7 +97,7 @@ pub fn phong<F: ShadingFloat, C: ShadingContext<F>>(
     let p = ctx.globals().P;
     let r = super::math::reflect(-v, n);
     let mut c = Color::zero();
-    ctx.illuminance(e, "", p, Some((n, F::c(PI / 2.0))), |e, l, cl| {
+    ctx.illuminance(e, "", p, Some((n, F::c(PI / 2.0))), #[inline(always)] |e, l, cl| {
         let w = r.dot(l.normalize()).max(F::c(0.0)).pow(size);
         e.update(&mut c, |c| c + cl * w);
     });
