@@ -47,6 +47,7 @@ pub struct Globals<F> {
 impl<F: ShadingFloat> Globals<F> {
     /// A unit square in the z = 0 plane facing a camera at (0, 0, 1): the default point set of
     /// `testshade`-style evaluation. `s`, `t`, `u`, `v` are taken from `(u, v)`.
+    #[inline]
     #[must_use]
     pub fn unit_square(u: F, v: F) -> Self {
         let zero = F::c(0.0);
@@ -294,6 +295,7 @@ pub struct PointContext<'a, F: ShadingFloat, L> {
 
 impl<'a, F: ShadingFloat, L: LightShader> PointContext<'a, F, L> {
     /// A context with the default sky (horizon 0.6, zenith (0.2, 0.3, 0.8)).
+    #[inline(always)]
     #[must_use]
     pub fn new(globals: Globals<F>, lights: &'a [L]) -> Self {
         Self { globals, lights, horizon: Color::c(0.6, 0.6, 0.6), zenith: Color::c(0.2, 0.3, 0.8) }

@@ -102,7 +102,7 @@ impl<F: ShadingFloat> Exec<F> {
     #[inline(always)]
     pub fn if_(&mut self, cond: F::Mask, body: impl FnOnce(&mut Self)) {
         let mut body = Some(body);
-        self.if_else(cond, |e, then| {
+        self.if_else(cond, #[inline(always)] |e, then| {
             if then {
                 if let Some(b) = body.take() {
                     b(e);
@@ -206,7 +206,7 @@ impl<F: ShadingFloat> Exec<F> {
         mut body: impl FnMut(&mut Self, &mut S),
         mut step: impl FnMut(&mut Self, &mut S),
     ) {
-        self.loop_(|e| {
+        self.loop_(#[inline(always)] |e| {
             if e.break_if(!cond(state)) {
                 return;
             }

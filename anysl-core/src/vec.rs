@@ -290,9 +290,10 @@ impl<F: ShadingFloat> Vec3<F> {
     pub fn normalize(self) -> Self {
         let l2 = self.dot(self);
         let zero = F::c(0.0);
-        let pos = l2.gt(zero);
-        let inv = F::c(1.0) / F::select(pos, l2, F::c(1.0)).sqrt();
-        self * F::select(pos, inv, zero)
+        // The guard is computed beside the square root, off its latency chain: 1/√0 = inf is
+        // replaced by 0 (as is a NaN length).
+        let inv = F::c(1.0) / l2.sqrt();
+        self * F::select(l2.gt(zero), inv, zero)
     }
     /// The same triple as a colour.
     #[inline(always)]

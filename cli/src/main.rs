@@ -1,7 +1,10 @@
 //! The `anysl` command-line tool.
 
+mod demo;
 mod kernels;
 mod native;
+mod render;
+mod table1;
 
 use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
@@ -17,12 +20,14 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Shade the shader collection and print the benchmark table.
+    /// Render the gallery with every renderer into `out/` and print a small Table-1 benchmark.
     Demo {
         /// Where pictures go.
         #[arg(long, default_value = "out")]
         out: PathBuf,
     },
+    /// Render one picture of a scene preset with one shader and renderer.
+    Render(render::RenderArgs),
     /// Benchmarks.
     Bench {
         #[command(subcommand)]
@@ -49,6 +54,22 @@ enum BenchCommand {
         /// Only these instantiations (repeatable; `f32` always runs as the speedup base).
         #[arg(long = "inst")]
         instantiations: Vec<String>,
+    },
+    /// The AnySL paper's Table 1: frames/s and shading speedup of the packet renderer per
+    /// shader × f32 / f32x4 / f32x8 / f32x16 / native-f32x8, with PSNR against f64.
+    Table1 {
+        /// Worker threads (default: all cores; the paper's figures are single-threaded: 1).
+        #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1024))]
+        threads: Option<u32>,
+        /// Also write the rows as JSON to this file.
+        #[arg(long)]
+        json: Option<PathBuf>,
+        /// Image side in pixels.
+        #[arg(long, default_value_t = 512, value_parser = clap::value_parser!(u32).range(8..=8192))]
+        size: u32,
+        /// Timed runs per row (medians reported).
+        #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u32).range(1..=1000))]
+        runs: u32,
     },
 }
 
@@ -85,14 +106,32 @@ fn bench_kernels(opts: kernels::KernelOpts, json: Option<PathBuf>) -> Result<(),
     Ok(())
 }
 
+fn bench_table1(opts: &table1::Table1Opts, json: Option<PathBuf>) -> Result<(), String> {
+    let pb = progress_bar(std::io::IsTerminal::is_terminal(&std::io::stderr()));
+    let rows = table1::run(opts, &pb)?;
+    pb.finish_and_clear();
+    table1::report(&rows, opts);
+    if let Some(path) = json {
+        let text = serde_json::to_string_pretty(&rows).map_err(|e| e.to_string())?;
+        std::fs::write(&path, text).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+        println!("rows written to {}", path.display());
+    }
+    Ok(())
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Demo { out } => demo(&out),
+        Command::Render(args) => render::run(&args),
         Command::Bench { which } => match which {
             BenchCommand::Kernels { json, points, runs, shaders, instantiations } => {
                 bench_kernels(kernels::KernelOpts { points, runs, shaders, instantiations }, json)
             }
+            BenchCommand::Table1 { threads, json, size, runs } => bench_table1(
+                &table1::Table1Opts { size, runs: runs as usize, threads: threads.map_or(0, |t| t as usize) },
+                json,
+            ),
         },
     };
     match result {
@@ -105,6 +144,6 @@ fn main() -> ExitCode {
 }
 
 fn demo(out: &std::path::Path) -> Result<(), String> {
-    let _ = out;
-    bench_kernels(kernels::KernelOpts { points: 8192, runs: 3, shaders: Vec::new(), instantiations: Vec::new() }, None)
+    let pb = progress_bar(std::io::IsTerminal::is_terminal(&std::io::stderr()));
+    demo::run(out, &table1::Table1Opts { size: 256, runs: 1, threads: 1 }, &pb)
 }

@@ -5,7 +5,7 @@
 //! source serves renderers with very different internals and gives the same picture in each:
 //!
 //! - [`render::packet`] (RTfact-like): packets of 4/8/16 rays shaded together with SIMD
-//!   floats, masked per shader;
+//!   floats, masked per shader, `Dual<F32xN>` when a shader asks for derivatives;
 //! - [`render::scalar`] (Manta-like): one ray at a time with ray differentials, `f32` or
 //!   `Dual<f32>` when a shader asks for derivatives;
 //! - [`render::pbrt`] (pbrt-like): an integrator over a passive material interface, or the
@@ -66,8 +66,12 @@ pub use accel::{Accel, Hit};
 pub use camera::Camera;
 pub use image::Image;
 pub use mesh::{Mesh, ObjError};
-pub use render::packet::{packet_shape, render_packet, render_packet_split, render_packet_stats, PacketStats};
+pub use render::packet::{
+    packet_shape, render_packet, render_packet_kernel, render_packet_split, render_packet_stats, render_packet_with,
+    PacketStats,
+};
 pub use render::pbrt::{render_pbrt, Integrator};
 pub use render::scalar::{render_scalar, render_scalar_as};
 pub use render::RenderOptions;
 pub use scene::{Instance, Scene, SceneError, Sky, SurfaceHit};
+pub use shading::{FilteredShading, GroupShading, KernelShading, PlainShading};

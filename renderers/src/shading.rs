@@ -8,9 +8,10 @@
 //! [`MAX_LANES`] rays needs no allocation anywhere on this path.
 
 use crate::scene::{Scene, SurfaceHit};
+use anysl_ad::Dual;
 use anysl_core::{
     in_cone, run_illuminance, sum_ambient, Color, Emission, Exec, Globals, LightOutput, LightShader, Mask,
-    ShadingContext, ShadingFloat, SurfaceShader, Vec3,
+    ShadingContext, ShadingFloat, SurfaceOutput, SurfaceShader, Vec3,
 };
 use glam::Vec3A;
 
@@ -186,15 +187,28 @@ fn sky_color<F: ShadingFloat>(sky: &crate::Sky, dir: Vec3<F>) -> Color<F> {
     h + (z - h) * t
 }
 
-/// Shades lanes `0 .. F::LANES` of `lanes`: misses get the background, hits are grouped by
-/// surface shader and each group is shaded in one masked pass; partly transparent results
-/// are composited over what lies behind (`Ci + (1 − Oi) · behind`).
+/// Shades lanes `0 .. F::LANES` of `lanes` with [`PlainShading`]: misses get the background,
+/// hits are grouped by surface shader and each group is shaded in one masked pass; partly
+/// transparent results are composited over what lies behind (`Ci + (1 − Oi) · behind`).
 #[inline(never)]
 pub fn shade_lanes<F, S, L>(tracer: Tracer<'_, S, L>, lanes: &Lanes<'_>, depth: Depth) -> Color<F>
 where
     F: ShadingFloat,
     S: SurfaceShader,
     L: LightShader,
+{
+    shade_lanes_by::<F, S, L, _>(tracer, lanes, depth, PlainShading)
+}
+
+/// [`shade_lanes`] with the shading of each group of lanes chosen by `how` (see
+/// [`GroupShading`]).
+#[inline(never)]
+pub fn shade_lanes_by<F, S, L, G>(tracer: Tracer<'_, S, L>, lanes: &Lanes<'_>, depth: Depth, how: G) -> Color<F>
+where
+    F: ShadingFloat,
+    S: SurfaceShader,
+    L: LightShader,
+    G: GroupShading<F, S, L>,
 {
     debug_assert!(F::LANES <= MAX_LANES && lanes.hits.len() >= F::LANES && lanes.dirs.len() >= F::LANES);
     let scene = tracer.scene;
@@ -225,10 +239,103 @@ where
             }
         }
         remaining &= !group;
-        let c = shade_group::<F, S, L>(tracer, lanes, group, first, depth);
+        let c = how.shade_group(tracer, lanes, group, first, depth);
         result = if group == active { c } else { Color::select(lane_mask::<F>(group), c, result) };
     }
     result
+}
+
+/// How a group of lanes that hit the same surface shader is shaded — the step of
+/// [`shade_lanes_by`] a renderer (or its caller) may replace. Implementations:
+/// [`PlainShading`] (the shader in `F`), [`FilteredShading`] (`Dual<F>` for shaders that
+/// use derivatives) and [`KernelShading`] (a caller's own kernel first).
+pub trait GroupShading<F: ShadingFloat, S, L>: Copy {
+    /// The colour of the lanes of `group`, all of which hit `lanes.hits[first].surface`
+    /// (other lanes: any finite value).
+    fn shade_group(self, tracer: Tracer<'_, S, L>, lanes: &Lanes<'_>, group: u32, first: usize, depth: Depth) -> Color<F>;
+}
+
+/// Every group shaded by its surface shader instantiated for `F` as is (with `F = Dual<_>`
+/// that already carries the hits' derivatives).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct PlainShading;
+
+impl<F: ShadingFloat, S: SurfaceShader, L: LightShader> GroupShading<F, S, L> for PlainShading {
+    #[inline(always)]
+    fn shade_group(self, tracer: Tracer<'_, S, L>, lanes: &Lanes<'_>, group: u32, first: usize, depth: Depth) -> Color<F> {
+        shade_group::<F, S, L>(tracer, lanes, group, first, depth)
+    }
+}
+
+/// Groups whose surface shader asks for derivatives (`uses_derivatives[surface]`, from
+/// [`anysl_core::ShaderMeta::uses_derivatives`]) are shaded with [`Dual<F>`] seeded with the
+/// hits' screen-space derivatives (ray differentials, see [`gather_globals`]), the others
+/// with plain `F` — what the scalar renderer does one ray at a time, for any width. An
+/// all-`false` (or empty) slice shades everything with `F`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct FilteredShading<'a> {
+    /// Per surface shader of the scene: shade it with dual numbers.
+    pub uses_derivatives: &'a [bool],
+}
+
+impl FilteredShading<'_> {
+    /// The derivative flags of `surfaces` when `enabled`, else none (plain `F` everywhere).
+    #[must_use]
+    pub fn flags<S: SurfaceShader>(surfaces: &[S], enabled: bool) -> Vec<bool> {
+        surfaces.iter().map(|s| enabled && s.meta().uses_derivatives).collect()
+    }
+}
+
+impl<F: ShadingFloat, S: SurfaceShader, L: LightShader> GroupShading<F, S, L> for FilteredShading<'_> {
+    #[inline(always)]
+    fn shade_group(self, tracer: Tracer<'_, S, L>, lanes: &Lanes<'_>, group: u32, first: usize, depth: Depth) -> Color<F> {
+        let surface = lanes.hits[first].surface as usize;
+        if !F::HAS_DERIVS && self.uses_derivatives.get(surface).copied().unwrap_or(false) {
+            let c = shade_group::<Dual<F>, S, L>(tracer, lanes, group, first, depth);
+            Color::new(c.r.val, c.g.val, c.b.val)
+        } else {
+            shade_group::<F, S, L>(tracer, lanes, group, first, depth)
+        }
+    }
+}
+
+/// A caller-supplied shading kernel tried first for every group: `kernel(shader, globals)`
+/// returns the group's [`SurfaceOutput`] (`Ci`, `Oi`) or `None` to leave the group to
+/// `fallback`. It sees the renderer's gathered globals (lanes outside the group hold copies
+/// of a group lane, so any value computed for them is finite and ignored) but not the scene:
+/// it does its own lighting. Opacity is composited as for shaders. This is how a
+/// hand-written SIMD kernel is plugged into a renderer without the renderer naming it.
+pub struct KernelShading<'a, K, G> {
+    /// The kernel.
+    pub kernel: &'a K,
+    /// Shades what the kernel declines.
+    pub fallback: G,
+}
+
+impl<K, G: Copy> Clone for KernelShading<'_, K, G> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+impl<K, G: Copy> Copy for KernelShading<'_, K, G> {}
+
+impl<F, S, L, K, G> GroupShading<F, S, L> for KernelShading<'_, K, G>
+where
+    F: ShadingFloat,
+    S: SurfaceShader,
+    L: LightShader,
+    K: Fn(&S, &Globals<F>) -> Option<SurfaceOutput<F>>,
+    G: GroupShading<F, S, L>,
+{
+    #[inline(always)]
+    fn shade_group(self, tracer: Tracer<'_, S, L>, lanes: &Lanes<'_>, group: u32, first: usize, depth: Depth) -> Color<F> {
+        let shader = &tracer.scene.surfaces[lanes.hits[first].surface as usize];
+        let globals = gather_globals::<F>(lanes.hits, group, first);
+        match (self.kernel)(shader, &globals) {
+            Some(out) => composite::<F, S, L>(tracer, lanes, group, depth, out),
+            None => self.fallback.shade_group(tracer, lanes, group, first, depth),
+        }
+    }
 }
 
 /// One masked pass of the surface shader of lane `first` over the lanes of `group`.
@@ -244,9 +351,21 @@ where
     let mut ctx = SceneContext { globals: gather_globals::<F>(lanes.hits, group, first), tracer, depth };
     let mut e = Exec::with_mask(mask);
     let out = shader.shade(&mut ctx, &mut e);
+    composite::<F, S, L>(tracer, lanes, group, depth, out)
+}
+
+/// `Ci` of the lanes of `group`, with what lies behind composited where `Oi < 1`.
+#[inline(always)]
+fn composite<F, S, L>(tracer: Tracer<'_, S, L>, lanes: &Lanes<'_>, group: u32, depth: Depth, out: SurfaceOutput<F>) -> Color<F>
+where
+    F: ShadingFloat,
+    S: SurfaceShader,
+    L: LightShader,
+{
     if depth.layer >= MAX_LAYERS {
         return out.Ci;
     }
+    let mask = lane_mask::<F>(group);
     let one = F::c(1.0);
     let see_through = mask & (out.Oi.r.lt(one) | out.Oi.g.lt(one) | out.Oi.b.lt(one));
     if see_through.none() {

@@ -164,8 +164,13 @@ fn scalar_renderer_derivatives_match_finite_differences() {
         }
     }
     assert!(checked > 400, "{checked}");
-    // Renderers without derivatives see zero.
-    let packet = render_packet::<f32, _, _>(&scene, &opts(false));
-    assert_eq!(packet.pixel(32, 32)[0], 0.0);
     assert!(img.pixel(32, 32)[0].abs() > 1e-3);
+    // The packet renderer seeds the same derivatives (as `Dual<F>`) at any width …
+    for packet in [render_packet::<f32, _, _>(&scene, &opts(false)), render_packet::<anysl_simd::F32x8, _, _>(&scene, &opts(false))] {
+        assert!(packet.max_abs_diff(&img) < 1e-5, "packet derivatives differ by {}", packet.max_abs_diff(&img));
+    }
+    // … and with derivatives switched off every renderer sees zero.
+    let plain = RenderOptions { derivatives: false, ..opts(false) };
+    assert_eq!(render_packet::<anysl_simd::F32x8, _, _>(&scene, &plain).pixel(32, 32)[0], 0.0);
+    assert_eq!(render_scalar(&scene, &plain).pixel(32, 32)[0], 0.0);
 }

@@ -38,6 +38,16 @@ macro_rules! closed_set {
     };
 }
 
+/// One concrete shader's `shade` as a function of its own (see [`Surface`]'s `shade`).
+#[inline(never)]
+fn shade_out_of_line<S: SurfaceShader, F: ShadingFloat, C: ShadingContext<F>>(
+    s: &S,
+    ctx: &mut C,
+    e: &mut Exec<F>,
+) -> SurfaceOutput<F> {
+    s.shade(ctx, e)
+}
+
 closed_set! {
     /// Any surface shader of the collection (the paper's Table 1).
     pub enum Surface {
@@ -114,19 +124,23 @@ impl Surface {
 }
 
 impl SurfaceShader for Surface {
+    /// Dispatches to the variant's shader, compiled as its own function per number type and
+    /// context (`shade_out_of_line`): a `match` over ten fully inlined shaders would make one
+    /// giant function per instantiation, whose optimization time grows much faster than its
+    /// size. Hot loops that want the shader inlined go through [`SurfaceShader::visit`].
     #[inline]
     fn shade<F: ShadingFloat, C: ShadingContext<F>>(&self, ctx: &mut C, e: &mut Exec<F>) -> SurfaceOutput<F> {
         match self {
-            Self::Brick(s) => s.shade(ctx, e),
-            Self::Checker(s) => s.shade(ctx, e),
-            Self::Glass(s) => s.shade(ctx, e),
-            Self::Granite(s) => s.shade(ctx, e),
-            Self::Parquet(s) => s.shade(ctx, e),
-            Self::Plastic(s) => s.shade(ctx, e),
-            Self::Screen(s) => s.shade(ctx, e),
-            Self::Starball(s) => s.shade(ctx, e),
-            Self::Venus(s) => s.shade(ctx, e),
-            Self::Wood(s) => s.shade(ctx, e),
+            Self::Brick(s) => shade_out_of_line(s, ctx, e),
+            Self::Checker(s) => shade_out_of_line(s, ctx, e),
+            Self::Glass(s) => shade_out_of_line(s, ctx, e),
+            Self::Granite(s) => shade_out_of_line(s, ctx, e),
+            Self::Parquet(s) => shade_out_of_line(s, ctx, e),
+            Self::Plastic(s) => shade_out_of_line(s, ctx, e),
+            Self::Screen(s) => shade_out_of_line(s, ctx, e),
+            Self::Starball(s) => shade_out_of_line(s, ctx, e),
+            Self::Venus(s) => shade_out_of_line(s, ctx, e),
+            Self::Wood(s) => shade_out_of_line(s, ctx, e),
         }
     }
 

@@ -29,7 +29,10 @@ pub fn diffuse<F: ShadingFloat, C: ShadingContext<F>>(ctx: &mut C, e: &mut Exec<
 }
 
 /// `(diffuse(N), specular(N, V, roughness))` in one light loop: each light is evaluated and
-/// `L` normalized once for both sums (what `plastic`-like shaders need).
+/// `L` normalized once for both sums (what `plastic`-like shaders need). The hemisphere of
+/// `N` that `illuminance(P, N, π/2)` would test is already in the body — `max(0, L·N)` and the
+/// `N·L > 0` condition of the highlight give exactly zero for lights behind the surface — so
+/// the loop runs without a cone test and gives the same sums as `diffuse` and `specular`.
 #[inline(always)]
 #[must_use]
 pub fn diffuse_specular<F: ShadingFloat, C: ShadingContext<F>>(
@@ -43,13 +46,17 @@ pub fn diffuse_specular<F: ShadingFloat, C: ShadingContext<F>>(
     let mut diff = Color::zero();
     let mut spec = Color::zero();
     let exponent = F::c(1.0) / roughness;
-    ctx.illuminance(e, "", p, Some((n, F::c(PI / 2.0))), #[inline(always)] |e, l, cl| {
+    let zero = F::c(0.0);
+    ctx.illuminance(e, "", p, None, #[inline(always)] |e, l, cl| {
         let lu = l.normalize();
         let ndl = lu.dot(n);
-        e.update(&mut diff, |d| d + cl * ndl.max(F::c(0.0)));
-        let h = (lu + v).normalize();
-        let s = n.dot(h).max(F::c(0.0)).pow(exponent);
-        e.update(&mut spec, |sp| sp + cl * F::select(ndl.gt(F::c(0.0)), s, F::c(0.0)));
+        e.update(&mut diff, |d| d + cl * ndl.max(zero));
+        // n·normalize(h) without forming normalize(h).
+        let h = lu + v;
+        let h2 = h.dot(h);
+        let ndh = (n.dot(h) * F::select(h2.gt(zero), F::c(1.0) / h2.sqrt(), zero)).max(zero);
+        let s = ndh.pow(exponent);
+        e.update(&mut spec, |sp| sp + cl * F::select(ndl.gt(zero), s, zero));
     });
     (diff, spec)
 }

@@ -96,7 +96,7 @@ fn cell<F: ShadingFloat>(x: F, period: Option<F>) -> (F, F::Bits, F::Bits) {
 
 /// Signed Perlin gradient noise in 3D, range ≈ [-1, 1], 0 at lattice points; `period`
 /// repeats the lattice (per axis) and `seed` selects an independent noise.
-#[inline(always)]
+#[inline]
 #[must_use]
 pub fn perlin3<F: ShadingFloat>(p: Vec3<F>, period: Option<Vec3<F>>, seed: u32) -> F {
     let (fx, i0, i1) = cell(p.x, period.map(|q| q.x));
@@ -118,7 +118,7 @@ pub fn perlin3<F: ShadingFloat>(p: Vec3<F>, period: Option<Vec3<F>>, seed: u32) 
 }
 
 /// Signed Perlin gradient noise in 4D (hypercube-corner gradients), range ≈ [-1, 1].
-#[inline(always)]
+#[inline]
 #[must_use]
 pub fn perlin4<F: ShadingFloat>(p: Vec3<F>, t: F, period: Option<(Vec3<F>, F)>, seed: u32) -> F {
     let (fx, i0, i1) = cell(p.x, period.map(|q| q.0.x));
@@ -174,7 +174,7 @@ impl<F: ShadingFloat> NoiseDomain<F> {
 }
 
 /// Signed noise of a domain (3D noise with unused axes at 0, plus 4D).
-#[inline(always)]
+#[inline]
 fn signed<F: ShadingFloat>(d: NoiseDomain<F>, period: Option<NoiseDomain<F>>, seed: u32) -> F {
     // Unused axes sit at a non-lattice offset so 1D/2D noise is not identically 0 there.
     let off = F::c(0.5);
@@ -309,7 +309,7 @@ pub fn vcellnoise<F: ShadingFloat>(d: NoiseDomain<F>) -> Vec3<F> {
 
 /// Fractional Brownian motion: `Σ gain^o · snoise(lacunarity^o · p)` over `octaves` octaves.
 /// The octave count is uniform (a loop with a fixed trip count).
-#[inline(always)]
+#[inline]
 #[must_use]
 pub fn fbm<F: ShadingFloat>(d: NoiseDomain<F>, octaves: u32, lacunarity: f64, gain: f64) -> F {
     let mut sum = F::c(0.0);
@@ -324,7 +324,7 @@ pub fn fbm<F: ShadingFloat>(d: NoiseDomain<F>, octaves: u32, lacunarity: f64, ga
 }
 
 /// Turbulence: `Σ gain^o · |snoise(lacunarity^o · p)|` (the classic granite/marble sum).
-#[inline(always)]
+#[inline]
 #[must_use]
 pub fn turbulence<F: ShadingFloat>(d: NoiseDomain<F>, octaves: u32, lacunarity: f64, gain: f64) -> F {
     let mut sum = F::c(0.0);

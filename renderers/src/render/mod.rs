@@ -4,7 +4,7 @@
 //!
 //! | renderer | rays | shading | design |
 //! |---|---|---|---|
-//! | [`packet`] | packets of `F::LANES` (2×2, 4×2, 4×4 pixels) | `F32x4/8/16` together, masked per shader | RTfact-like |
+//! | [`packet`] | packets of `F::LANES` (2×2, 4×2, 4×4 pixels) | `F32x4/8/16` together, masked per shader; `Dual<F>` when the shader asks | RTfact-like |
 //! | [`scalar`] | one at a time, ray differentials | `f32`, or `Dual<f32>` when the shader asks | Manta-like |
 //! | [`pbrt`] | one at a time, integrator, RNG | passive material or the shader's own lighting | pbrt-like |
 
@@ -32,11 +32,16 @@ pub struct RenderOptions {
     pub shadows: bool,
     /// Seed of the path tracer's random numbers.
     pub seed: u64,
+    /// Shade surface shaders whose metadata says `uses_derivatives` with dual numbers
+    /// seeded from the camera rays' differentials (`Dual<F>` in the packet renderer,
+    /// `Dual<f32>` in the scalar and pbrt-like ones), so `filterstep` and friends
+    /// antialias. Off: every shader in plain `F` (what the Table-1 benchmark times).
+    pub derivatives: bool,
 }
 
 impl Default for RenderOptions {
     fn default() -> Self {
-        Self { spp: 1, threads: 0, progress: false, shadows: true, seed: 0x5EED }
+        Self { spp: 1, threads: 0, progress: false, shadows: true, seed: 0x5EED, derivatives: true }
     }
 }
 

@@ -2,15 +2,18 @@
 //! blocks (4 rays = 2×2, 8 = 4×2, 16 = 4×4), traced lane by lane through the BVH, then
 //! **shaded together**: the hits are gathered into the structure-of-arrays globals of a
 //! SIMD [`ShadingFloat`] and each surface shader present in the packet runs once, masked to
-//! its lanes ([`crate::shading::shade_lanes`]). The same packets can be split and shaded
-//! lane by lane with `f32` (the AnySL paper's "Scalar" column) or `f64` (the accuracy
-//! reference): [`render_packet_split`].
+//! its lanes ([`crate::shading::shade_lanes_by`]). A shader whose metadata says
+//! `uses_derivatives` is shaded with `Dual<F>` seeded from the camera rays' differentials
+//! (as the scalar renderer does with `Dual<f32>`), unless [`RenderOptions::derivatives`] is
+//! off. The same packets can be split and shaded lane by lane with `f32` (the AnySL paper's
+//! "Scalar" column) or `f64` (the accuracy reference): [`render_packet_split`]. A caller can
+//! plug its own packet shading kernel in front of the shaders: [`render_packet_kernel`].
 
 use super::{render_bands, sample_offset, RenderOptions};
 use crate::image::Image;
 use crate::scene::{Scene, SurfaceHit};
-use crate::shading::{shade_lanes, Depth, Lanes, Tracer, MAX_LANES};
-use anysl_core::{LightShader, ShadingFloat, SurfaceShader};
+use crate::shading::{shade_lanes_by, Depth, FilteredShading, GroupShading, KernelShading, Lanes, Tracer, MAX_LANES};
+use anysl_core::{Globals, LightShader, ShadingFloat, SurfaceOutput, SurfaceShader};
 use glam::Vec3A;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::{Duration, Instant};
@@ -64,10 +67,57 @@ where
     S: SurfaceShader,
     L: LightShader,
 {
+    let derivs = FilteredShading::flags(&scene.surfaces, opts.derivatives);
+    measured(|stats| packet_render::<F, S, L, _>(scene, opts, packet_lanes, stats, FilteredShading { uses_derivatives: &derivs }))
+}
+
+/// [`render_packet_stats`] with a caller's shading kernel: for every group of lanes that hit
+/// the same surface shader, `kernel(shader, globals)` is asked first (`globals`: the
+/// packet's [`Globals`] in `F`, seeded with derivatives if `F` carries them) and returns
+/// the group's `Ci`/`Oi`, or `None` to let the shader run as in [`render_packet_stats`]. The
+/// kernel does its own lighting (it does not see the scene). The AnySL paper's "Native"
+/// column plugs hand-written SIMD shaders in here.
+///
+/// # Panics
+/// As [`render_packet_split`].
+#[must_use]
+pub fn render_packet_kernel<F, S, L, K>(scene: &Scene<S, L>, opts: &RenderOptions, packet_lanes: usize, kernel: &K) -> (Image, PacketStats)
+where
+    F: ShadingFloat,
+    S: SurfaceShader,
+    L: LightShader,
+    K: Fn(&S, &Globals<F>) -> Option<SurfaceOutput<F>> + Sync,
+{
+    let derivs = FilteredShading::flags(&scene.surfaces, opts.derivatives);
+    let how = KernelShading { kernel, fallback: FilteredShading { uses_derivatives: &derivs } };
+    render_packet_with::<F, S, L, _>(scene, opts, packet_lanes, how)
+}
+
+/// The packet renderer with the shading of each group of lanes chosen by `how` (ignoring
+/// [`RenderOptions::derivatives`]), measured as in [`render_packet_stats`]. With
+/// [`PlainShading`](crate::shading::PlainShading) every shader runs in plain `F` and no
+/// dual-number code is instantiated (the Table-1 benchmark's variants);
+/// [`KernelShading`] puts a caller's kernel in front of any of them.
+///
+/// # Panics
+/// As [`render_packet_split`].
+#[must_use]
+pub fn render_packet_with<F, S, L, G>(scene: &Scene<S, L>, opts: &RenderOptions, packet_lanes: usize, how: G) -> (Image, PacketStats)
+where
+    F: ShadingFloat,
+    S: SurfaceShader,
+    L: LightShader,
+    G: GroupShading<F, S, L> + Sync,
+{
+    measured(|stats| packet_render::<F, S, L, G>(scene, opts, packet_lanes, stats, how))
+}
+
+/// Runs `render` with counters for shading time and points.
+fn measured(render: impl FnOnce(Option<(&AtomicU64, &AtomicU64)>) -> Image) -> (Image, PacketStats) {
     let shading_ns = AtomicU64::new(0);
     let points = AtomicU64::new(0);
     let start = Instant::now();
-    let image = packet_render::<F, S, L>(scene, opts, packet_lanes, Some((&shading_ns, &points)));
+    let image = render(Some((&shading_ns, &points)));
     let stats = PacketStats {
         total: start.elapsed(),
         shading: Duration::from_nanos(shading_ns.into_inner()),
@@ -89,20 +139,24 @@ where
     S: SurfaceShader,
     L: LightShader,
 {
-    packet_render::<F, S, L>(scene, opts, packet_lanes, None)
+    let derivs = FilteredShading::flags(&scene.surfaces, opts.derivatives);
+    packet_render::<F, S, L, _>(scene, opts, packet_lanes, None, FilteredShading { uses_derivatives: &derivs })
 }
 
-/// The packet renderer; `stats` = (shading nanoseconds, shaded points) to measure into.
-fn packet_render<F, S, L>(
+/// The packet renderer; `stats` = (shading nanoseconds, shaded points) to measure into,
+/// `how` shades each group of lanes.
+fn packet_render<F, S, L, G>(
     scene: &Scene<S, L>,
     opts: &RenderOptions,
     packet_lanes: usize,
     stats: Option<(&AtomicU64, &AtomicU64)>,
+    how: G,
 ) -> Image
 where
     F: ShadingFloat,
     S: SurfaceShader,
     L: LightShader,
+    G: GroupShading<F, S, L> + Sync,
 {
     assert!(
         (1..=MAX_LANES).contains(&packet_lanes) && packet_lanes.is_multiple_of(F::LANES),
@@ -168,7 +222,7 @@ where
                             hit: hit >> base,
                             camera: true,
                         };
-                        let c = shade_lanes::<F, S, L>(tracer, &lanes, Depth::default());
+                        let c = shade_lanes_by::<F, S, L, G>(tracer, &lanes, Depth::default(), how);
                         c.r.store(&mut out[0][base..]);
                         c.g.store(&mut out[1][base..]);
                         c.b.store(&mut out[2][base..]);

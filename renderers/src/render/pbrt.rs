@@ -22,12 +22,19 @@
 //!   or by the sky. Opacity composites what lies behind: `L + (1 − Oi) · behind`.
 //! - [`Integrator::Active`] runs the shader's own `illuminance` / `ambient` / `trace` through
 //!   the same [`SceneContext`](crate::shading::SceneContext) as the other renderers
-//!   (in `f32`), so its picture matches theirs.
+//!   (in `f32`, `Dual<f32>` for shaders that use derivatives), so its picture matches theirs.
+//!
+//! Both integrators evaluate a shader that uses derivatives with `Dual<f32>` seeded from the
+//! camera ray's differentials (unless [`RenderOptions::derivatives`] is off); the passive
+//! material does so too, so its base colour is filtered like the other renderers' pictures.
 
 use super::{render_bands, sample_offset, RenderOptions};
 use crate::image::Image;
 use crate::scene::{Scene, SurfaceHit};
-use crate::shading::{gather_globals, ray_epsilon, shade_lanes, Depth, Lanes, ProbeContext, Tracer, MAX_LAYERS};
+use crate::shading::{
+    gather_globals, ray_epsilon, shade_lanes_by, Depth, FilteredShading, Lanes, ProbeContext, Tracer, MAX_LAYERS,
+};
+use anysl_ad::Dual;
 use anysl_core::points::SplitMix64;
 use anysl_core::{Emission, Exec, LightShader, ParamValue, SurfaceShader, Vec3};
 use glam::Vec3A;
@@ -76,7 +83,9 @@ where
     let weight = 1.0 / (n * n) as f32;
     let footprint = 1.0 / n as f32;
     let tracer = Tracer { scene, shadows: opts.shadows };
-    let passive = Passive { scene, params: &params, shadows: opts.shadows };
+    let derivs = FilteredShading::flags(&scene.surfaces, opts.derivatives);
+    let filtered = FilteredShading { uses_derivatives: &derivs };
+    let passive = Passive { scene, params: &params, shadows: opts.shadows, derivs: &derivs };
     let label = match integrator {
         Integrator::Passive => "pbrt passive",
         Integrator::Active => "pbrt active",
@@ -92,7 +101,7 @@ where
                 let o = cam.position();
                 let (d, ddx, ddy) = cam.ray_differential(x as f32 + ox, y as f32 + oy, footprint);
                 acc += match integrator {
-                    Integrator::Active => li_active(tracer, o, d, (ddx, ddy)),
+                    Integrator::Active => li_active(tracer, filtered, o, d, (ddx, ddy)),
                     Integrator::Passive => passive.li(o, d, Some((ddx, ddy)), 0, 0, true, &mut rng),
                 };
             }
@@ -102,13 +111,19 @@ where
 }
 
 /// The active integrator: the shader's own lighting for one camera ray.
-fn li_active<S: SurfaceShader, L: LightShader>(tracer: Tracer<'_, S, L>, o: Vec3A, d: Vec3A, diff: (Vec3A, Vec3A)) -> Vec3A {
+fn li_active<S: SurfaceShader, L: LightShader>(
+    tracer: Tracer<'_, S, L>,
+    how: FilteredShading<'_>,
+    o: Vec3A,
+    d: Vec3A,
+    diff: (Vec3A, Vec3A),
+) -> Vec3A {
     let scene = tracer.scene;
     let dirs = [d];
     let hit = scene.intersect(o, d, 0.0, f32::INFINITY);
     let hits = [hit.map(|h| scene.surface_hit(&h, o, d, Some(diff))).unwrap_or_default()];
     let lanes = Lanes { hits: &hits, dirs: &dirs, active: 1, hit: u32::from(hit.is_some()), camera: true };
-    let c = shade_lanes::<f32, S, L>(tracer, &lanes, Depth::default());
+    let c = shade_lanes_by::<f32, S, L, _>(tracer, &lanes, Depth::default(), how);
     Vec3A::new(c.r, c.g, c.b)
 }
 
@@ -117,6 +132,8 @@ struct Passive<'a, S, L> {
     scene: &'a Scene<S, L>,
     params: &'a [MaterialParams],
     shadows: bool,
+    /// Per surface shader: evaluate it with `Dual<f32>`.
+    derivs: &'a [bool],
 }
 
 impl<S: SurfaceShader, L: LightShader> Passive<'_, S, L> {
@@ -144,13 +161,20 @@ impl<S: SurfaceShader, L: LightShader> Passive<'_, S, L> {
         radiance
     }
 
-    /// Base colour and opacity: the shader under the probe light.
+    /// Base colour and opacity: the shader under the probe light (in `Dual<f32>` when it
+    /// uses derivatives; hits of secondary rays carry none).
     fn material(&self, sh: &SurfaceHit) -> (Vec3A, Vec3A) {
         let shader = &self.scene.surfaces[sh.surface as usize];
-        let mut ctx = ProbeContext { globals: gather_globals::<f32>(std::slice::from_ref(sh), 1, 0) };
-        let mut e = Exec::<f32>::new();
-        let out = shader.shade(&mut ctx, &mut e);
-        (Vec3A::new(out.Ci.r, out.Ci.g, out.Ci.b), Vec3A::new(out.Oi.r, out.Oi.g, out.Oi.b))
+        if self.derivs[sh.surface as usize] {
+            let mut ctx = ProbeContext { globals: gather_globals::<Dual<f32>>(std::slice::from_ref(sh), 1, 0) };
+            let out = shader.shade(&mut ctx, &mut Exec::<Dual<f32>>::new());
+            let (ci, oi) = (out.Ci, out.Oi);
+            (Vec3A::new(ci.r.val, ci.g.val, ci.b.val), Vec3A::new(oi.r.val, oi.g.val, oi.b.val))
+        } else {
+            let mut ctx = ProbeContext { globals: gather_globals::<f32>(std::slice::from_ref(sh), 1, 0) };
+            let out = shader.shade(&mut ctx, &mut Exec::<f32>::new());
+            (Vec3A::new(out.Ci.r, out.Ci.g, out.Ci.b), Vec3A::new(out.Oi.r, out.Oi.g, out.Oi.b))
+        }
     }
 
     /// Direct light from the scene's lights (with shadow rays) and the specular lobe.

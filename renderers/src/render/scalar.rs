@@ -3,12 +3,12 @@
 //! ∂dir/∂y); at the hit they are transferred to the tangent plane to give ∂P/∂x, ∂P/∂y and,
 //! through the triangle's barycentric derivatives, ∂N, ∂s, ∂t. A shader whose metadata says
 //! `uses_derivatives` is then shaded with `Dual<f32>` seeded with them, every other shader
-//! with plain `f32`.
+//! (and every shader when [`RenderOptions::derivatives`] is off) with plain `f32`.
 
 use super::{render_bands, sample_offset, RenderOptions};
 use crate::image::Image;
 use crate::scene::Scene;
-use crate::shading::{shade_lanes, Depth, Lanes, Tracer};
+use crate::shading::{shade_lanes, Depth, FilteredShading, Lanes, Tracer};
 use anysl_ad::Dual;
 use anysl_core::{Color, LightShader, ShadingFloat, SurfaceShader};
 
@@ -40,7 +40,7 @@ where
     let cam = &scene.camera;
     let (width, height) = (cam.width(), cam.height());
     // Shader metadata is looked up once per render, not per ray.
-    let wants_derivs: Vec<bool> = scene.surfaces.iter().map(|s| s.meta().uses_derivatives).collect();
+    let wants_derivs = FilteredShading::flags(&scene.surfaces, opts.derivatives);
     let n = opts.grid();
     let weight = 1.0 / (n * n) as f32;
     let footprint = 1.0 / n as f32;

@@ -52,11 +52,11 @@ impl SurfaceShader for Glass {
         let fr = fresnel(g.I, nf, ratio);
         let wr = fr.kr * F::c(self.Kr);
         let wt = fr.kt * F::c(self.Kt);
-        e.if_(wr.gt(zero), |e| {
+        e.if_(wr.gt(zero), #[inline(always)] |e| {
             let c = ctx.trace(e, g.P, fr.r);
             e.update(&mut ci, |ci| ci + c * wr);
         });
-        e.if_(wt.gt(zero), |e| {
+        e.if_(wt.gt(zero), #[inline(always)] |e| {
             let c = ctx.trace(e, g.P, fr.t);
             e.update(&mut ci, |ci| ci + c * wt);
         });
