@@ -49,23 +49,39 @@ impl<F: ShadingFloat> Dual<F> {
     #[inline(always)]
     #[must_use]
     pub fn seed_x(val: F) -> Self {
-        Self { val, ddx: F::c(1.0), ddy: F::c(0.0) }
+        Self {
+            val,
+            ddx: F::c(1.0),
+            ddy: F::c(0.0),
+        }
     }
     /// The screen coordinate y itself: derivatives `(0, 1)`.
     #[inline(always)]
     #[must_use]
     pub fn seed_y(val: F) -> Self {
-        Self { val, ddx: F::c(0.0), ddy: F::c(1.0) }
+        Self {
+            val,
+            ddx: F::c(0.0),
+            ddy: F::c(1.0),
+        }
     }
     /// The chain rule for a unary function: value `f` and derivative factor `k = f'(val)`.
     #[inline(always)]
     fn chain(self, f: F, k: F) -> Self {
-        Self { val: f, ddx: self.ddx * k, ddy: self.ddy * k }
+        Self {
+            val: f,
+            ddx: self.ddx * k,
+            ddy: self.ddy * k,
+        }
     }
     /// The chain rule for a binary function with partial derivatives `ka`, `kb`.
     #[inline(always)]
     fn chain2(self, rhs: Self, f: F, ka: F, kb: F) -> Self {
-        Self { val: f, ddx: self.ddx * ka + rhs.ddx * kb, ddy: self.ddy * ka + rhs.ddy * kb }
+        Self {
+            val: f,
+            ddx: self.ddx * ka + rhs.ddx * kb,
+            ddy: self.ddy * ka + rhs.ddy * kb,
+        }
     }
 }
 
@@ -73,7 +89,11 @@ impl<F: ShadingFloat> Add for Dual<F> {
     type Output = Self;
     #[inline(always)]
     fn add(self, r: Self) -> Self {
-        Self { val: self.val + r.val, ddx: self.ddx + r.ddx, ddy: self.ddy + r.ddy }
+        Self {
+            val: self.val + r.val,
+            ddx: self.ddx + r.ddx,
+            ddy: self.ddy + r.ddy,
+        }
     }
 }
 
@@ -81,7 +101,11 @@ impl<F: ShadingFloat> Sub for Dual<F> {
     type Output = Self;
     #[inline(always)]
     fn sub(self, r: Self) -> Self {
-        Self { val: self.val - r.val, ddx: self.ddx - r.ddx, ddy: self.ddy - r.ddy }
+        Self {
+            val: self.val - r.val,
+            ddx: self.ddx - r.ddx,
+            ddy: self.ddy - r.ddy,
+        }
     }
 }
 
@@ -103,7 +127,11 @@ impl<F: ShadingFloat> Div for Dual<F> {
     fn div(self, r: Self) -> Self {
         let q = self.val / r.val;
         let inv = F::c(1.0) / r.val;
-        Self { val: q, ddx: (self.ddx - q * r.ddx) * inv, ddy: (self.ddy - q * r.ddy) * inv }
+        Self {
+            val: q,
+            ddx: (self.ddx - q * r.ddx) * inv,
+            ddy: (self.ddy - q * r.ddy) * inv,
+        }
     }
 }
 
@@ -111,7 +139,11 @@ impl<F: ShadingFloat> Neg for Dual<F> {
     type Output = Self;
     #[inline(always)]
     fn neg(self) -> Self {
-        Self { val: -self.val, ddx: -self.ddx, ddy: -self.ddy }
+        Self {
+            val: -self.val,
+            ddx: -self.ddx,
+            ddy: -self.ddy,
+        }
     }
 }
 
@@ -134,7 +166,11 @@ impl<F: ShadingFloat> Blend<Dual<F>> for Dual<F> {
     }
     #[inline(always)]
     fn widen(self) -> Self {
-        Self { val: self.val.widen(), ddx: self.ddx.widen(), ddy: self.ddy.widen() }
+        Self {
+            val: self.val.widen(),
+            ddx: self.ddx.widen(),
+            ddy: self.ddy.widen(),
+        }
     }
 }
 
@@ -225,14 +261,20 @@ impl<F: ShadingFloat> ShadingFloat for Dual<F> {
     fn min(self, rhs: Self) -> Self {
         let take_rhs = rhs.val.lt(self.val) | self.val.is_nan();
         let pick = <Self as ShadingFloat>::select(take_rhs, rhs, self);
-        Self { val: self.val.min(rhs.val), ..pick }
+        Self {
+            val: self.val.min(rhs.val),
+            ..pick
+        }
     }
     /// Derivatives of the operand chosen; ties take `self`.
     #[inline(always)]
     fn max(self, rhs: Self) -> Self {
         let take_rhs = self.val.lt(rhs.val) | self.val.is_nan();
         let pick = <Self as ShadingFloat>::select(take_rhs, rhs, self);
-        Self { val: self.val.max(rhs.val), ..pick }
+        Self {
+            val: self.val.max(rhs.val),
+            ..pick
+        }
     }
     /// `1/(2√x)`; 0 at x = 0.
     #[inline(always)]
@@ -343,7 +385,11 @@ impl<F: ShadingFloat> ShadingFloat for Dual<F> {
     }
     #[inline(always)]
     fn with_derivs(self, dx: Self, dy: Self) -> Self {
-        Self { val: self.val, ddx: dx.val, ddy: dy.val }
+        Self {
+            val: self.val,
+            ddx: dx.val,
+            ddy: dy.val,
+        }
     }
     #[inline(always)]
     fn lower(self, i: usize) -> f64 {

@@ -108,10 +108,16 @@ pub struct SurfaceOutput<F> {
 
 impl<F: ShadingFloat> Blend<F> for SurfaceOutput<F> {
     fn blend(m: F::Mask, a: Self, b: Self) -> Self {
-        Self { Ci: Blend::blend(m, a.Ci, b.Ci), Oi: Blend::blend(m, a.Oi, b.Oi) }
+        Self {
+            Ci: Blend::blend(m, a.Ci, b.Ci),
+            Oi: Blend::blend(m, a.Oi, b.Oi),
+        }
     }
     fn widen(self) -> Self {
-        Self { Ci: self.Ci.widen(), Oi: self.Oi.widen() }
+        Self {
+            Ci: self.Ci.widen(),
+            Oi: self.Oi.widen(),
+        }
     }
 }
 
@@ -185,7 +191,12 @@ impl<F: ShadingFloat> ConeTest<F> {
     pub fn new(axis: Vec3<F>, angle: F) -> Self {
         let pi = F::c(core::f64::consts::PI);
         let c = angle.min(pi).cos();
-        Self { axis, c2a2: c * c * axis.length_squared(), narrow: c.ge(F::c(0.0)), all: angle.ge(pi) }
+        Self {
+            axis,
+            c2a2: c * c * axis.length_squared(),
+            narrow: c.ge(F::c(0.0)),
+            all: angle.ge(pi),
+        }
     }
     /// Lanes whose `dir` lies inside the cone.
     #[inline(always)]
@@ -261,7 +272,11 @@ pub fn run_illuminance<F, L, V, B>(
             Some(v) => out.cl * v,
             None => out.cl,
         };
-        e.masked(mask, #[inline(always)] |e| body(e, to_light, cl));
+        e.masked(
+            mask,
+            #[inline(always)]
+            |e| body(e, to_light, cl),
+        );
     }
 }
 
@@ -298,7 +313,12 @@ impl<'a, F: ShadingFloat, L: LightShader> PointContext<'a, F, L> {
     #[inline(always)]
     #[must_use]
     pub fn new(globals: Globals<F>, lights: &'a [L]) -> Self {
-        Self { globals, lights, horizon: Color::c(0.6, 0.6, 0.6), zenith: Color::c(0.2, 0.3, 0.8) }
+        Self {
+            globals,
+            lights,
+            horizon: Color::c(0.6, 0.6, 0.6),
+            zenith: Color::c(0.2, 0.3, 0.8),
+        }
     }
 }
 

@@ -69,7 +69,13 @@ impl<F: ShadingFloat> Exec<F> {
     #[must_use]
     pub fn with_mask(active: F::Mask) -> Self {
         let no = F::Mask::splat(false);
-        Self { active, broken: no, continued: no, returned: no, widening: false }
+        Self {
+            active,
+            broken: no,
+            continued: no,
+            returned: no,
+            widening: false,
+        }
     }
     /// The lanes currently live.
     #[inline(always)]
@@ -95,20 +101,28 @@ impl<F: ShadingFloat> Exec<F> {
     #[inline(always)]
     pub fn assign<T: Blend<F>>(&self, dst: &mut T, value: T) {
         let blended = T::blend(self.active, value, *dst);
-        *dst = if <F::Mask as Mask>::THREE_VALUED && self.widening { blended.widen() } else { blended };
+        *dst = if <F::Mask as Mask>::THREE_VALUED && self.widening {
+            blended.widen()
+        } else {
+            blended
+        };
     }
 
     /// Runs `body` with the mask narrowed to `cond`; skipped when no live lane has `cond`.
     #[inline(always)]
     pub fn if_(&mut self, cond: F::Mask, body: impl FnOnce(&mut Self)) {
         let mut body = Some(body);
-        self.if_else(cond, #[inline(always)] |e, then| {
-            if then {
-                if let Some(b) = body.take() {
-                    b(e);
+        self.if_else(
+            cond,
+            #[inline(always)]
+            |e, then| {
+                if then {
+                    if let Some(b) = body.take() {
+                        b(e);
+                    }
                 }
-            }
-        });
+            },
+        );
     }
 
     /// RSL `if (cond) … else …`, with masks: `arms(e, true)` is the then-arm, `arms(e, false)`
@@ -206,14 +220,17 @@ impl<F: ShadingFloat> Exec<F> {
         mut body: impl FnMut(&mut Self, &mut S),
         mut step: impl FnMut(&mut Self, &mut S),
     ) {
-        self.loop_(#[inline(always)] |e| {
-            if e.break_if(!cond(state)) {
-                return;
-            }
-            body(e, state);
-            e.end_continue();
-            step(e, state);
-        });
+        self.loop_(
+            #[inline(always)]
+            |e| {
+                if e.break_if(!cond(state)) {
+                    return;
+                }
+                body(e, state);
+                e.end_continue();
+                step(e, state);
+            },
+        );
     }
 
     /// RSL `break` for the lanes of `cond`: they leave the innermost loop. Returns true when

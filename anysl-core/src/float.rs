@@ -7,8 +7,7 @@
 
 use core::fmt::Debug;
 use core::ops::{
-    Add, AddAssign, BitAnd, BitOr, BitXor, Div, DivAssign, Mul, MulAssign, Neg, Not, Shl, Shr,
-    Sub, SubAssign,
+    Add, AddAssign, BitAnd, BitOr, BitXor, Div, DivAssign, Mul, MulAssign, Neg, Not, Shl, Shr, Sub, SubAssign,
 };
 
 /// The result of comparing two [`ShadingFloat`]s: one truth value per lane.
@@ -17,14 +16,7 @@ use core::ops::{
 /// [`Mask::any`] then means *possibly true in some lane* and [`Mask::all`] *surely true in
 /// every lane*, which is what masked control flow needs to stay conservative.
 pub trait Mask:
-    Copy
-    + Debug
-    + Send
-    + Sync
-    + 'static
-    + BitAnd<Output = Self>
-    + BitOr<Output = Self>
-    + Not<Output = Self>
+    Copy + Debug + Send + Sync + 'static + BitAnd<Output = Self> + BitOr<Output = Self> + Not<Output = Self>
 {
     /// Number of lanes.
     const LANES: usize;

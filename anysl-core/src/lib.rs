@@ -23,20 +23,20 @@
 pub mod context;
 pub mod exec;
 pub mod float;
-pub mod stdlib;
-pub mod prelude;
 pub mod points;
+pub mod prelude;
 pub mod shader;
+pub mod stdlib;
 pub mod vec;
 
 pub use context::{
-    illuminate, in_cone, run_illuminance, ConeTest, solar, sum_ambient, Emission, Globals, LightOutput,
-    PointContext, ShadingContext, SurfaceOutput,
+    illuminate, in_cone, run_illuminance, solar, sum_ambient, ConeTest, Emission, Globals, LightOutput, PointContext,
+    ShadingContext, SurfaceOutput,
 };
 pub use exec::{Exec, INTERVAL_LOOP_LIMIT};
 pub use float::{Blend, LatticeBits, Mask, ShadingFloat};
 pub use shader::{
-    DisplacementShader, LightShader, ParamError, ParamField, ParamInfo, ParamType, ParamValue,
-    Shader, ShaderKind, ShaderMeta, Storage, SurfaceShader, SurfaceVisitor,
+    DisplacementShader, LightShader, ParamError, ParamField, ParamInfo, ParamType, ParamValue, Shader, ShaderKind,
+    ShaderMeta, Storage, SurfaceShader, SurfaceVisitor,
 };
 pub use vec::{Color, Matrix4, Vec3};

@@ -329,7 +329,9 @@ impl<F: ShadingFloat> Matrix4<F> {
     /// From 16 constants in row order (RSL `matrix(m00, m01, …)`).
     #[must_use]
     pub fn from_array(v: [f64; 16]) -> Self {
-        Self { m: core::array::from_fn(|r| core::array::from_fn(|c| F::c(v[r * 4 + c]))) }
+        Self {
+            m: core::array::from_fn(|r| core::array::from_fn(|c| F::c(v[r * 4 + c]))),
+        }
     }
     /// The identity.
     #[must_use]
@@ -340,7 +342,9 @@ impl<F: ShadingFloat> Matrix4<F> {
     #[must_use]
     pub fn scalar(s: F) -> Self {
         let z = F::c(0.0);
-        Self { m: core::array::from_fn(|r| core::array::from_fn(|c| if r == c { s } else { z })) }
+        Self {
+            m: core::array::from_fn(|r| core::array::from_fn(|c| if r == c { s } else { z })),
+        }
     }
     /// A translation by `t`.
     #[must_use]
@@ -381,7 +385,9 @@ impl<F: ShadingFloat> Matrix4<F> {
     /// The transpose.
     #[must_use]
     pub fn transpose(self) -> Self {
-        Self { m: core::array::from_fn(|r| core::array::from_fn(|c| self.m[c][r])) }
+        Self {
+            m: core::array::from_fn(|r| core::array::from_fn(|c| self.m[c][r])),
+        }
     }
     /// Transforms a point (`w = 1`, with the homogeneous divide).
     #[inline]
@@ -425,7 +431,9 @@ impl<F: ShadingFloat> Matrix4<F> {
         let zero = F::c(0.0);
         let singular = det.eq(zero);
         let inv_det = F::select(singular, zero, F::c(1.0) / F::select(singular, F::c(1.0), det));
-        Self { m: adj.m.map(|row| row.map(|v| v * inv_det)) }
+        Self {
+            m: adj.m.map(|row| row.map(|v| v * inv_det)),
+        }
     }
     /// Adjugate and determinant by cofactor expansion (branch-free, so it works per lane).
     fn adjugate_det(&self) -> (Self, F) {
@@ -493,10 +501,14 @@ impl<F: ShadingFloat> Mul for Matrix4<F> {
 impl<F: ShadingFloat> Blend<F> for Matrix4<F> {
     #[inline(always)]
     fn blend(m: F::Mask, a: Self, b: Self) -> Self {
-        Self { m: core::array::from_fn(|r| core::array::from_fn(|c| F::select(m, a.m[r][c], b.m[r][c]))) }
+        Self {
+            m: core::array::from_fn(|r| core::array::from_fn(|c| F::select(m, a.m[r][c], b.m[r][c]))),
+        }
     }
     fn widen(self) -> Self {
-        Self { m: self.m.map(|row| row.map(Blend::widen)) }
+        Self {
+            m: self.m.map(|row| row.map(Blend::widen)),
+        }
     }
 }
 

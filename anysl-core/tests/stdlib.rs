@@ -110,7 +110,12 @@ fn spline_interpolates_catmull_rom_knots_and_linear() {
     }
     let lin = SplineBasis::LINEAR;
     assert_relative_eq!(spline(&lin, 1.0 / 6.0, &knots), 2.5, epsilon = 1e-12);
-    let colors = [Color::<f64>::c(0.0, 0.0, 0.0), Color::c(1.0, 0.0, 0.0), Color::c(0.0, 1.0, 0.0), Color::c(0.0, 0.0, 1.0)];
+    let colors = [
+        Color::<f64>::c(0.0, 0.0, 0.0),
+        Color::c(1.0, 0.0, 0.0),
+        Color::c(0.0, 1.0, 0.0),
+        Color::c(0.0, 0.0, 1.0),
+    ];
     let c = spline(&b, 0.0, &colors);
     assert_relative_eq!(c.r, 1.0, epsilon = 1e-12);
     // B-spline of constant knots is that constant (partition of unity).
@@ -127,8 +132,20 @@ fn spline_interpolates_catmull_rom_knots_and_linear() {
 
 #[test]
 fn color_spaces_round_trip() {
-    let spaces = [ColorSpace::Hsv, ColorSpace::Hsl, ColorSpace::Xyz, ColorSpace::XyY, ColorSpace::Yiq];
-    let samples = [[0.2, 0.5, 0.9], [1.0, 0.0, 0.0], [0.3, 0.3, 0.3], [0.0, 0.0, 0.0], [0.9, 0.8, 0.1]];
+    let spaces = [
+        ColorSpace::Hsv,
+        ColorSpace::Hsl,
+        ColorSpace::Xyz,
+        ColorSpace::XyY,
+        ColorSpace::Yiq,
+    ];
+    let samples = [
+        [0.2, 0.5, 0.9],
+        [1.0, 0.0, 0.0],
+        [0.3, 0.3, 0.3],
+        [0.0, 0.0, 0.0],
+        [0.9, 0.8, 0.1],
+    ];
     for s in spaces {
         for c in samples {
             let rgb = Color::<f64>::from_array(c);
@@ -176,11 +193,24 @@ fn matrix_inverse_transform_and_singular() {
 
 #[test]
 fn ptlined_and_rotate() {
-    let d = ptlined(Vec3::<f64>::c(0.0, 0.0, 0.0), Vec3::c(2.0, 0.0, 0.0), Vec3::c(1.0, 3.0, 0.0));
+    let d = ptlined(
+        Vec3::<f64>::c(0.0, 0.0, 0.0),
+        Vec3::c(2.0, 0.0, 0.0),
+        Vec3::c(1.0, 3.0, 0.0),
+    );
     assert_relative_eq!(d, 3.0);
-    let d = ptlined(Vec3::<f64>::c(0.0, 0.0, 0.0), Vec3::c(0.0, 0.0, 0.0), Vec3::c(0.0, 4.0, 0.0));
+    let d = ptlined(
+        Vec3::<f64>::c(0.0, 0.0, 0.0),
+        Vec3::c(0.0, 0.0, 0.0),
+        Vec3::c(0.0, 4.0, 0.0),
+    );
     assert_relative_eq!(d, 4.0);
-    let r = rotate(Vec3::<f64>::c(1.0, 0.0, 0.0), PI / 2.0, Vec3::zero(), Vec3::c(0.0, 0.0, 1.0));
+    let r = rotate(
+        Vec3::<f64>::c(1.0, 0.0, 0.0),
+        PI / 2.0,
+        Vec3::zero(),
+        Vec3::c(0.0, 0.0, 1.0),
+    );
     assert!((r.y.abs() - 1.0).abs() < 1e-12 && r.x.abs() < 1e-12);
 }
 

@@ -65,8 +65,7 @@ pub use soa::{pack, pack_color, pack_vec3, unpack, unpack_color, unpack_vec3, La
 use anysl_core::{Blend, LatticeBits, Mask, ShadingFloat};
 use core::fmt;
 use core::ops::{
-    Add, AddAssign, BitAnd, BitOr, BitXor, Div, DivAssign, Mul, MulAssign, Neg, Not, Shl, Shr, Sub,
-    SubAssign,
+    Add, AddAssign, BitAnd, BitOr, BitXor, Div, DivAssign, Mul, MulAssign, Neg, Not, Shl, Shr, Sub, SubAssign,
 };
 
 /// Defines one SIMD width: the float type, its mask and its integer lanes, with every
@@ -424,7 +423,11 @@ macro_rules! simd_width {
             const LANES: usize = $lanes;
             #[inline(always)]
             fn splat(b: bool) -> Self {
-                Self(wide::$wf::from_bits(wide::$wu::splat(if b { u32::MAX } else { 0 })))
+                Self(wide::$wf::from_bits(wide::$wu::splat(if b {
+                    u32::MAX
+                } else {
+                    0
+                })))
             }
             #[inline(always)]
             fn any(self) -> bool {
@@ -531,24 +534,8 @@ macro_rules! simd_width {
     };
 }
 
-simd_width!(
-    4,
-    "f32x4",
-    F32x4(f32x4),
-    M32x4,
-    U32x4(u32x4),
-    i32x4,
-    from_i32x4
-);
-simd_width!(
-    8,
-    "f32x8",
-    F32x8(f32x8),
-    M32x8,
-    U32x8(u32x8),
-    i32x8,
-    from_i32x8
-);
+simd_width!(4, "f32x4", F32x4(f32x4), M32x4, U32x4(u32x4), i32x4, from_i32x4);
+simd_width!(8, "f32x8", F32x8(f32x8), M32x8, U32x8(u32x8), i32x8, from_i32x8);
 simd_width!(
     16,
     "f32x16",

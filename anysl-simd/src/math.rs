@@ -356,10 +356,7 @@ fn log_reduce<W: Wide>(x: W) -> (W, W, W) {
 fn log2_dd<W: Wide>(x: W) -> (W, W) {
     let (e, ln_hi, ln_lo) = log_reduce(x);
     let l_hi = ln_hi * k(LOG2E_HI);
-    let l_lo = ln_lo.fma(
-        k(LOG2E_HI),
-        ln_hi.fma(k(LOG2E_LO), ln_hi.fma(k(LOG2E_HI), -l_hi)),
-    );
+    let l_lo = ln_lo.fma(k(LOG2E_HI), ln_hi.fma(k(LOG2E_LO), ln_hi.fma(k(LOG2E_HI), -l_hi)));
     // Fast2Sum: e is an integer and |l_hi| <= 0.5, so |e| >= |l_hi| unless e = 0.
     let hi = e + l_hi;
     let lo = ((e - hi) + l_hi) + l_lo;
@@ -433,19 +430,9 @@ pub(crate) fn pow<W: Wide>(x: W, y: W) -> W {
 // Trigonometry.
 
 /// sin r = r + r³·S(r²), |r| <= 0.82 (tools/polyfit.py "sin S", degree 3, error 3.1e-9).
-const SIN_S: [f32; 4] = [
-    -1.666666716e-1,
-    8.333331905e-3,
-    -1.983986440e-4,
-    2.722240652e-6,
-];
+const SIN_S: [f32; 4] = [-1.666666716e-1, 8.333331905e-3, -1.983986440e-4, 2.722240652e-6];
 /// cos r = 1 - r²/2 + r⁴·C(r²), |r| <= 0.82 ("cos C", degree 3, error 8.4e-10).
-const COS_C: [f32; 4] = [
-    4.166666791e-2,
-    -1.388888690e-3,
-    2.480041439e-5,
-    -2.727799142e-7,
-];
+const COS_C: [f32; 4] = [4.166666791e-2, -1.388888690e-3, 2.480041439e-5, -2.727799142e-7];
 /// tan r = r + r³·T(r²), |r| <= 0.82 ("tan T", degree 8, error 4.8e-9).
 const TAN_T: [f32; 9] = [
     3.333333433e-1,

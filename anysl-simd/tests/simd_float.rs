@@ -6,8 +6,8 @@
 use anysl_core::stdlib::lattice_hash;
 use anysl_core::{Blend, Color, LatticeBits, Mask, ShadingFloat, Vec3};
 use anysl_simd::{
-    pack, pack_color, pack_vec3, unpack, unpack_color, unpack_vec3, F32x16, F32x4, F32x8, Lanes,
-    M32x16, M32x4, M32x8, U32x16, U32x4, U32x8,
+    pack, pack_color, pack_vec3, unpack, unpack_color, unpack_vec3, F32x16, F32x4, F32x8, Lanes, M32x16, M32x4, M32x8,
+    U32x16, U32x4, U32x8,
 };
 
 /// Bound on the relative error of every transcendental against std.
@@ -171,11 +171,7 @@ fn rel_err(got: f32, want: f32, zero_sign_matters: bool) -> f64 {
     }
     if want == 0.0 && got == 0.0 {
         let same = want.is_sign_negative() == got.is_sign_negative();
-        return if same || !zero_sign_matters {
-            0.0
-        } else {
-            f64::INFINITY
-        };
+        return if same || !zero_sign_matters { 0.0 } else { f64::INFINITY };
     }
     (got as f64 - want as f64).abs() / (want.abs() as f64).max(f32::MIN_POSITIVE as f64)
 }
@@ -233,22 +229,9 @@ fn check2<F: Lanes>(
 }
 
 /// [`check2`] for unary operations.
-fn check1<F: Lanes>(
-    name: &str,
-    xs: &[f32],
-    simd: impl Fn(F) -> F,
-    scalar: impl Fn(f32) -> f32,
-    tol: f64,
-) -> Stats {
+fn check1<F: Lanes>(name: &str, xs: &[f32], simd: impl Fn(F) -> F, scalar: impl Fn(f32) -> f32, tol: f64) -> Stats {
     let pairs: Vec<(f32, f32)> = xs.iter().map(|&x| (x, 0.0)).collect();
-    check2::<F>(
-        name,
-        &pairs,
-        |a, _| simd(a),
-        |x, _| scalar(x),
-        |_, _| tol,
-        true,
-    )
+    check2::<F>(name, &pairs, |a, _| simd(a), |x, _| scalar(x), |_, _| tol, true)
 }
 
 fn report(width: &str, name: &str, st: Stats) {
@@ -380,25 +363,12 @@ where
 {
     let mut rng = Rng::new(5);
     let mut hs: Vec<u32> = (0..RANDOM).map(|_| rng.u32()).collect();
-    hs.extend([
-        0,
-        1,
-        255,
-        256,
-        u32::MAX,
-        0x8000_0000,
-        0x7fff_ffff,
-        0x8000_0001,
-    ]);
+    hs.extend([0, 1, 255, 256, u32::MAX, 0x8000_0000, 0x7fff_ffff, 0x8000_0001]);
     for chunk in hs.chunks(N) {
         let bits = F::Bits::from(core::array::from_fn(|i| chunk[i.min(chunk.len() - 1)]));
         for (i, &h) in chunk.iter().enumerate() {
             let u = F::bits_to_unit(bits).lane(i) as f32;
-            assert_eq!(
-                u.to_bits(),
-                f32::bits_to_unit(h).to_bits(),
-                "bits_to_unit({h:#x})"
-            );
+            assert_eq!(u.to_bits(), f32::bits_to_unit(h).to_bits(), "bits_to_unit({h:#x})");
             let s = F::bits_to_float_signed(bits).lane(i) as f32;
             let want = f32::bits_to_float_signed(h);
             assert_eq!(s.to_bits(), want.to_bits(), "bits_to_float_signed({h:#x})");
@@ -495,9 +465,7 @@ fn pack_roundtrip<F: Lanes>() {
         let pts: Vec<Vec3<f32>> = (0..len)
             .map(|i| Vec3::new(i as f32, -(i as f32) * 0.5, 1e7 + i as f32))
             .collect();
-        let cols: Vec<Color<f32>> = (0..len)
-            .map(|i| Color::new(0.1 * i as f32, 2.0, -(i as f32)))
-            .collect();
+        let cols: Vec<Color<f32>> = (0..len).map(|i| Color::new(0.1 * i as f32, 2.0, -(i as f32))).collect();
         let vals: Vec<f32> = (0..len).map(|i| i as f32 * 3.25 - 1.0).collect();
         let mut out_p = vec![Vec3::<f32>::splat(f32::NAN); len];
         let mut out_c = vec![Color::<f32>::splat(f32::NAN); len];
@@ -535,15 +503,9 @@ fn exp_family<F: Lanes>() -> [(&'static str, Stats); 4] {
     log_in.extend(rng.many(RANDOM, |r| r.finite().abs()));
     [
         ("exp", check1::<F>("exp", &exp_in, F::exp, f32::exp, TOL)),
-        (
-            "exp2",
-            check1::<F>("exp2", &exp2_in, F::exp2, f32::exp2, TOL),
-        ),
+        ("exp2", check1::<F>("exp2", &exp2_in, F::exp2, f32::exp2, TOL)),
         ("ln", check1::<F>("ln", &log_in, F::ln, f32::ln, TOL)),
-        (
-            "log2",
-            check1::<F>("log2", &log_in, F::log2, f32::log2, TOL),
-        ),
+        ("log2", check1::<F>("log2", &log_in, F::log2, f32::log2, TOL)),
     ]
 }
 
@@ -592,39 +554,20 @@ fn trig_family<F: Lanes>() -> [(&'static str, Stats); 7] {
     let mut trig_in = unary_inputs(31, &[(-10.0, 10.0), (-1e4, 1e4), (-6e5, 6e5)]);
     trig_in.extend(rng.many(RANDOM, |r| r.uniform(-19.0, 19.0).exp2()));
     trig_in.extend(rng.many(RANDOM, |r| r.finite()));
-    let inv_in = unary_inputs(
-        32,
-        &[(-1.0, 1.0), (-1.01, 1.01), (0.49, 0.51), (0.59, 0.61)],
-    );
+    let inv_in = unary_inputs(32, &[(-1.0, 1.0), (-1.01, 1.01), (0.49, 0.51), (0.59, 0.61)]);
     let atan_in = unary_inputs(33, &[(-10.0, 10.0), (-1e6, 1e6)]);
     let e = edge_values();
     let atan2_in = pairs(34, &e, |r| (r.uniform(-10.0, 10.0), r.uniform(-10.0, 10.0)));
     let mut atan2_st = check2::<F>("atan2", &atan2_in, F::atan2, f32::atan2, |_, _| TOL, true);
     let wild: Vec<(f32, f32)> = (0..RANDOM).map(|_| (rng.bits(), rng.bits())).collect();
-    atan2_st.merge(check2::<F>(
-        "atan2",
-        &wild,
-        F::atan2,
-        f32::atan2,
-        |_, _| TOL,
-        true,
-    ));
+    atan2_st.merge(check2::<F>("atan2", &wild, F::atan2, f32::atan2, |_, _| TOL, true));
     [
         ("sin", check1::<F>("sin", &trig_in, F::sin, f32::sin, TOL)),
         ("cos", check1::<F>("cos", &trig_in, F::cos, f32::cos, TOL)),
         ("tan", check1::<F>("tan", &trig_in, F::tan, f32::tan, TOL)),
-        (
-            "asin",
-            check1::<F>("asin", &inv_in, F::asin, f32::asin, TOL),
-        ),
-        (
-            "acos",
-            check1::<F>("acos", &inv_in, F::acos, f32::acos, TOL),
-        ),
-        (
-            "atan",
-            check1::<F>("atan", &atan_in, F::atan, f32::atan, TOL),
-        ),
+        ("asin", check1::<F>("asin", &inv_in, F::asin, f32::asin, TOL)),
+        ("acos", check1::<F>("acos", &inv_in, F::acos, f32::acos, TOL)),
+        ("atan", check1::<F>("atan", &atan_in, F::atan, f32::atan, TOL)),
         ("atan2", atan2_st),
     ]
 }

@@ -18,7 +18,11 @@ pub const GALLERY_SPP: u32 = 4;
 pub fn run(out: &Path, bench: &table1::Table1Opts, pb: &ProgressBar) -> Result<(), String> {
     std::fs::create_dir_all(out).map_err(|e| format!("cannot create {}: {e}", out.display()))?;
     let scene = build_scene(SceneName::Gallery, None, &[], GALLERY_SIZE)?;
-    let opts = RenderOptions { spp: GALLERY_SPP, progress: pb.is_hidden(), ..RenderOptions::default() };
+    let opts = RenderOptions {
+        spp: GALLERY_SPP,
+        progress: pb.is_hidden(),
+        ..RenderOptions::default()
+    };
     println!(
         "gallery: ten Table-1 shaders, phong bunny, checker ground, {}×{} pixels, {GALLERY_SPP} spp, shadows",
         scene.camera.width(),
@@ -43,15 +47,26 @@ pub fn run(out: &Path, bench: &table1::Table1Opts, pb: &ProgressBar) -> Result<(
     println!("with one indirect bounce, so it is expected to differ):");
     for (renderer, image) in &images {
         if *renderer != RendererName::Scalar {
-            println!("  {:<13} {:>6.1} dB  (max diff {:.3})", renderer.name(), image.psnr(scalar), image.max_abs_diff(scalar));
+            println!(
+                "  {:<13} {:>6.1} dB  (max diff {:.3})",
+                renderer.name(),
+                image.psnr(scalar),
+                image.max_abs_diff(scalar)
+            );
         }
     }
     println!();
-    println!("Table 1 (small run: {0}×{0}, {1} run, {2} thread):", bench.size, bench.runs, bench.threads);
+    println!(
+        "Table 1 (small run: {0}×{0}, {1} run, {2} thread):",
+        bench.size, bench.runs, bench.threads
+    );
     let rows = table1::run(bench, pb)?;
     pb.finish_and_clear();
     table1::report(&rows, bench);
     println!();
-    println!("pictures are in {}/ (gallery-packet.png, gallery-scalar.png, gallery-pbrt.png, gallery-pbrt-passive.png)", out.display());
+    println!(
+        "pictures are in {}/ (gallery-packet.png, gallery-scalar.png, gallery-pbrt.png, gallery-pbrt-passive.png)",
+        out.display()
+    );
     Ok(())
 }

@@ -64,19 +64,6 @@ fn median(mut v: Vec<f64>) -> f64 {
     v[v.len() / 2]
 }
 
-/// Times `f` (one warm-up call, then `runs` calls) and returns the median seconds.
-pub fn time_median(runs: usize, mut f: impl FnMut()) -> f64 {
-    f();
-    let times = (0..runs.max(1))
-        .map(|_| {
-            let t = Instant::now();
-            f();
-            t.elapsed().as_secs_f64()
-        })
-        .collect();
-    median(times)
-}
-
 /// Runs the benchmark and returns its rows.
 pub fn run(opts: &KernelOpts, progress: &indicatif::ProgressBar) -> Result<Vec<KernelRow>, String> {
     let names: Vec<String> = if opts.shaders.is_empty() {
@@ -90,7 +77,10 @@ pub fn run(opts: &KernelOpts, progress: &indicatif::ProgressBar) -> Result<Vec<K
     let known: Vec<&str> = all.iter().map(|(n, _)| *n).chain(["native-f32x8"]).collect();
     for want in &opts.instantiations {
         if !known.contains(&want.as_str()) {
-            return Err(format!("unknown instantiation '{want}' (choices: {})", known.join(", ")));
+            return Err(format!(
+                "unknown instantiation '{want}' (choices: {})",
+                known.join(", ")
+            ));
         }
     }
     let wanted = |n: &str| n == "f32" || opts.instantiations.is_empty() || opts.instantiations.iter().any(|w| w == n);
@@ -98,13 +88,15 @@ pub fn run(opts: &KernelOpts, progress: &indicatif::ProgressBar) -> Result<Vec<K
     progress.set_length((names.len() * (insts.len() + 1)) as u64);
     let mut rows = Vec::new();
     for name in &names {
-        let surface = Surface::by_name(name).ok_or_else(|| {
-            format!("unknown shader '{name}' (choices: {})", Surface::NAMES.join(", "))
-        })?;
+        let surface = Surface::by_name(name)
+            .ok_or_else(|| format!("unknown shader '{name}' (choices: {})", Surface::NAMES.join(", ")))?;
         let derivs = surface.meta().uses_derivatives;
         let reference = shade_points_f64::<f64, _, _>(&surface, &lights, &set);
-        let dual_reference =
-            if derivs { Some(shade_points_f64::<Dual<f64>, _, _>(&surface, &lights, &set)) } else { None };
+        let dual_reference = if derivs {
+            Some(shade_points_f64::<Dual<f64>, _, _>(&surface, &lights, &set))
+        } else {
+            None
+        };
         let mut f32_rate = None;
         let mut push = |inst: &str, rate: f64, out: &ShadeOut<f32>, rows: &mut Vec<KernelRow>| {
             let (refname, r) = match (&dual_reference, inst.starts_with("dual")) {
@@ -125,17 +117,30 @@ pub fn run(opts: &KernelOpts, progress: &indicatif::ProgressBar) -> Result<Vec<K
                 reference: refname.to_string(),
             });
         };
-        for (inst, runner) in &insts {
-            progress.set_message(format!("{name} {inst}"));
-            let mut out = ShadeOut::<f32>::new(set.len());
-            let secs = time_median(opts.runs, || runner(&surface, &lights, &set, &mut out));
-            push(inst, set.len() as f64 / secs, &out, &mut rows);
-            progress.inc(1);
-        }
+        // Every instantiation of this shader is timed round-robin (one call each per round,
+        // median over the rounds), so drift of the shared machine hits all rows alike and the
+        // speedups of one run stay comparable.
+        let mut runners: Vec<(&str, Runner)> = insts.iter().map(|(n, r)| (*n, *r)).collect();
         if let Some(native) = crate::native::runner(&surface).filter(|_| wanted("native-f32x8")) {
-            let mut out = ShadeOut::<f32>::new(set.len());
-            let secs = time_median(opts.runs, || native(&surface, &lights, &set, &mut out));
-            push("native-f32x8", set.len() as f64 / secs, &out, &mut rows);
+            runners.push(("native-f32x8", native));
+        }
+        let mut outs: Vec<ShadeOut<f32>> = runners.iter().map(|_| ShadeOut::<f32>::new(set.len())).collect();
+        let mut times: Vec<Vec<f64>> = vec![Vec::new(); runners.len()];
+        progress.set_message(name.to_string());
+        for round in 0..=opts.runs.max(1) {
+            for (k, (_, runner)) in runners.iter().enumerate() {
+                let t = Instant::now();
+                runner(&surface, &lights, &set, &mut outs[k]);
+                // Round 0 is the warm-up.
+                if round > 0 {
+                    times[k].push(t.elapsed().as_secs_f64());
+                }
+            }
+        }
+        for (k, (inst, _)) in runners.iter().enumerate() {
+            let secs = median(std::mem::take(&mut times[k]));
+            push(inst, set.len() as f64 / secs, &outs[k], &mut rows);
+            progress.inc(1);
         }
         progress.inc(1);
     }
@@ -173,7 +178,11 @@ pub fn summary(rows: &[KernelRow]) -> Vec<(String, f64, f64)> {
     names
         .into_iter()
         .map(|inst| {
-            let sp: Vec<f64> = rows.iter().filter(|r| r.instantiation == inst).map(|r| r.speedup).collect();
+            let sp: Vec<f64> = rows
+                .iter()
+                .filter(|r| r.instantiation == inst)
+                .map(|r| r.speedup)
+                .collect();
             let am = sp.iter().sum::<f64>() / sp.len() as f64;
             let gm = (sp.iter().map(|s| s.ln()).sum::<f64>() / sp.len() as f64).exp();
             (inst, am, gm)

@@ -12,7 +12,11 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 #[derive(Parser)]
-#[command(name = "anysl", version, about = "One shader, any renderer: type-replacement shading")]
+#[command(
+    name = "anysl",
+    version,
+    about = "One shader, any renderer: type-replacement shading"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -94,7 +98,10 @@ fn bench_kernels(opts: kernels::KernelOpts, json: Option<PathBuf>) -> Result<(),
     pb.finish_and_clear();
     kernels::print_table(&rows);
     println!();
-    println!("mean speedup over f32 (arithmetic / geometric), {} points, median of {} runs:", opts.points, opts.runs);
+    println!(
+        "mean speedup over f32 (arithmetic / geometric), {} points, median of {} runs:",
+        opts.points, opts.runs
+    );
     for (inst, am, gm) in kernels::summary(&rows) {
         println!("  {inst:<13} {am:>6.2}x / {gm:>6.2}x");
     }
@@ -125,11 +132,32 @@ fn main() -> ExitCode {
         Command::Demo { out } => demo(&out),
         Command::Render(args) => render::run(&args),
         Command::Bench { which } => match which {
-            BenchCommand::Kernels { json, points, runs, shaders, instantiations } => {
-                bench_kernels(kernels::KernelOpts { points, runs, shaders, instantiations }, json)
-            }
-            BenchCommand::Table1 { threads, json, size, runs } => bench_table1(
-                &table1::Table1Opts { size, runs: runs as usize, threads: threads.map_or(0, |t| t as usize) },
+            BenchCommand::Kernels {
+                json,
+                points,
+                runs,
+                shaders,
+                instantiations,
+            } => bench_kernels(
+                kernels::KernelOpts {
+                    points,
+                    runs,
+                    shaders,
+                    instantiations,
+                },
+                json,
+            ),
+            BenchCommand::Table1 {
+                threads,
+                json,
+                size,
+                runs,
+            } => bench_table1(
+                &table1::Table1Opts {
+                    size,
+                    runs: runs as usize,
+                    threads: threads.map_or(0, |t| t as usize),
+                },
                 json,
             ),
         },
@@ -145,5 +173,13 @@ fn main() -> ExitCode {
 
 fn demo(out: &std::path::Path) -> Result<(), String> {
     let pb = progress_bar(std::io::IsTerminal::is_terminal(&std::io::stderr()));
-    demo::run(out, &table1::Table1Opts { size: 256, runs: 1, threads: 1 }, &pb)
+    demo::run(
+        out,
+        &table1::Table1Opts {
+            size: 256,
+            runs: 1,
+            threads: 1,
+        },
+        &pb,
+    )
 }

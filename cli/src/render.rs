@@ -3,8 +3,8 @@
 
 use anysl_core::{ParamValue, Shader};
 use anysl_renderers::{
-    render_packet, render_packet_with, render_pbrt, render_scalar, scenes, Image, Integrator, PlainShading, RenderOptions,
-    Scene,
+    render_packet, render_packet_with, render_pbrt, render_scalar, scenes, Image, Integrator, PlainShading,
+    RenderOptions, Scene,
 };
 use anysl_shaders::{table1_lights, Light, Surface};
 use anysl_simd::{F32x16, F32x4, F32x8};
@@ -110,21 +110,33 @@ pub fn apply_params(surfaces: &mut [Surface], params: &[String]) -> Result<(), S
             let Some(info) = meta.param(name) else { continue };
             found = true;
             let value = ParamValue::parse(info.ty, text).map_err(|e| {
-                format!("--param {name}={text}: shader '{}' parameter '{name}' is a {}: {e}", meta.name, info.ty.keyword())
+                format!(
+                    "--param {name}={text}: shader '{}' parameter '{name}' is a {}: {e}",
+                    meta.name,
+                    info.ty.keyword()
+                )
             })?;
-            surface.set_param(name, &value).map_err(|e| format!("--param {name}={text}: {e}"))?;
+            surface
+                .set_param(name, &value)
+                .map_err(|e| format!("--param {name}={text}: {e}"))?;
         }
         if !found {
             let listing: Vec<String> = unique_shaders(surfaces)
                 .iter()
                 .map(|s| {
                     let meta = s.meta();
-                    let params: Vec<String> =
-                        meta.params.iter().map(|p| format!("{} {} = {}", p.ty.keyword(), p.name, p.default)).collect();
+                    let params: Vec<String> = meta
+                        .params
+                        .iter()
+                        .map(|p| format!("{} {} = {}", p.ty.keyword(), p.name, p.default))
+                        .collect();
                     format!("  {}: {}", meta.name, params.join(", "))
                 })
                 .collect();
-            return Err(format!("--param {name}: no such shader parameter; the parameters are:\n{}", listing.join("\n")));
+            return Err(format!(
+                "--param {name}: no such shader parameter; the parameters are:\n{}",
+                listing.join("\n")
+            ));
         }
     }
     Ok(())
@@ -150,9 +162,19 @@ pub fn gallery_surfaces() -> Vec<Surface> {
 }
 
 /// Builds the scene preset with `shader` (or the gallery's ten) and the Table-1 lights.
-pub fn build_scene(scene: SceneName, shader: Option<&str>, params: &[String], size: u32) -> Result<Scene<Surface, Light>, String> {
+pub fn build_scene(
+    scene: SceneName,
+    shader: Option<&str>,
+    params: &[String],
+    size: u32,
+) -> Result<Scene<Surface, Light>, String> {
     let by_name = |name: &str| {
-        Surface::by_name(name).ok_or_else(|| format!("--shader {name}: unknown shader (choices: {})", shader_choices().join(", ")))
+        Surface::by_name(name).ok_or_else(|| {
+            format!(
+                "--shader {name}: unknown shader (choices: {})",
+                shader_choices().join(", ")
+            )
+        })
     };
     let mut surfaces = match (scene, shader) {
         (SceneName::Gallery, None) => gallery_surfaces(),
@@ -194,7 +216,10 @@ pub fn render_with(scene: &Scene<Surface, Light>, renderer: RendererName, lanes:
 
 /// `anysl render`.
 pub fn run(args: &RenderArgs) -> Result<(), String> {
-    let lanes: usize = args.lanes.parse().map_err(|_| format!("--lanes {}: expected 4, 8 or 16", args.lanes))?;
+    let lanes: usize = args
+        .lanes
+        .parse()
+        .map_err(|_| format!("--lanes {}: expected 4, 8 or 16", args.lanes))?;
     let scene = build_scene(args.scene, args.shader.as_deref(), &args.params, args.size)?;
     let opts = RenderOptions {
         spp: args.spp,
@@ -208,7 +233,10 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         (_, Some(name)) => name.clone(),
         (_, None) => "phong".to_string(),
     };
-    let output = args.output.clone().unwrap_or_else(|| PathBuf::from(format!("{stem}.png")));
+    let output = args
+        .output
+        .clone()
+        .unwrap_or_else(|| PathBuf::from(format!("{stem}.png")));
     let start = Instant::now();
     let image = render_with(&scene, args.renderer, lanes, &opts);
     let elapsed = start.elapsed();

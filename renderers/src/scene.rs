@@ -36,7 +36,11 @@ pub struct Sky {
 
 impl Default for Sky {
     fn default() -> Self {
-        Self { horizon: [0.6, 0.6, 0.6], zenith: [0.2, 0.3, 0.8], visible_to_camera: false }
+        Self {
+            horizon: [0.6, 0.6, 0.6],
+            zenith: [0.2, 0.3, 0.8],
+            visible_to_camera: false,
+        }
     }
 }
 
@@ -112,7 +116,11 @@ impl<S, L> Scene<S, L> {
                 .get(inst.mesh)
                 .ok_or_else(|| SceneError(format!("instance {k} uses mesh {} of {}", inst.mesh, meshes.len())))?;
             if inst.surface >= surfaces.len() {
-                return Err(SceneError(format!("instance {k} uses surface {} of {}", inst.surface, surfaces.len())));
+                return Err(SceneError(format!(
+                    "instance {k} uses surface {} of {}",
+                    inst.surface,
+                    surfaces.len()
+                )));
             }
             if mesh.normals.len() != mesh.positions.len() || mesh.uvs.len() != mesh.positions.len() {
                 return Err(SceneError(format!(
@@ -125,14 +133,23 @@ impl<S, L> Scene<S, L> {
             }
             let base = positions.len() as u32;
             let normal_matrix = inst.transform.inverse().transpose();
-            positions.extend(mesh.positions.iter().map(|p| Vec3A::from(inst.transform.transform_point3(*p))));
+            positions.extend(
+                mesh.positions
+                    .iter()
+                    .map(|p| Vec3A::from(inst.transform.transform_point3(*p))),
+            );
             normals.extend(
-                mesh.normals.iter().map(|n| Vec3A::from(normal_matrix.transform_vector3(*n)).normalize_or_zero()),
+                mesh.normals
+                    .iter()
+                    .map(|n| Vec3A::from(normal_matrix.transform_vector3(*n)).normalize_or_zero()),
             );
             uvs.extend_from_slice(&mesh.uvs);
             for tri in &mesh.triangles {
                 if tri.iter().any(|&i| i as usize >= mesh.positions.len()) {
-                    return Err(SceneError(format!("mesh {}: triangle {tri:?} indexes past its vertices", inst.mesh)));
+                    return Err(SceneError(format!(
+                        "mesh {}: triangle {tri:?} indexes past its vertices",
+                        inst.mesh
+                    )));
                 }
                 triangles.push(TriangleRef {
                     vertices: tri.map(|i| base + i),
@@ -141,10 +158,23 @@ impl<S, L> Scene<S, L> {
                 });
             }
         }
-        let world: Vec<[Vec3A; 3]> =
-            triangles.iter().map(|t| t.vertices.map(|i| positions[i as usize])).collect();
+        let world: Vec<[Vec3A; 3]> = triangles
+            .iter()
+            .map(|t| t.vertices.map(|i| positions[i as usize]))
+            .collect();
         let accel = Accel::build(&world);
-        Ok(Self { camera, surfaces, lights, sky: Sky::default(), instances, positions, normals, uvs, triangles, accel })
+        Ok(Self {
+            camera,
+            surfaces,
+            lights,
+            sky: Sky::default(),
+            instances,
+            positions,
+            normals,
+            uvs,
+            triangles,
+            accel,
+        })
     }
 
     /// The instances.
@@ -162,7 +192,9 @@ impl<S, L> Scene<S, L> {
     /// The world-space vertices of triangle `prim`.
     #[must_use]
     pub fn triangle_vertices(&self, prim: u32) -> [Vec3A; 3] {
-        self.triangles[prim as usize].vertices.map(|i| self.positions[i as usize])
+        self.triangles[prim as usize]
+            .vertices
+            .map(|i| self.positions[i as usize])
     }
 
     /// The BVH (and brute-force reference) over the triangles.
@@ -183,7 +215,13 @@ impl<S, L> Scene<S, L> {
     /// carries the screen-space derivatives of P, N, s and t.
     #[inline]
     #[must_use]
-    pub fn surface_hit(&self, hit: &Hit, origin: Vec3A, dir: Vec3A, differential: Option<(Vec3A, Vec3A)>) -> SurfaceHit {
+    pub fn surface_hit(
+        &self,
+        hit: &Hit,
+        origin: Vec3A,
+        dir: Vec3A,
+        differential: Option<(Vec3A, Vec3A)>,
+    ) -> SurfaceHit {
         let tri = &self.triangles[hit.prim as usize];
         let [i0, i1, i2] = tri.vertices.map(|i| i as usize);
         let (p0, p1, p2) = (self.positions[i0], self.positions[i1], self.positions[i2]);
@@ -211,7 +249,10 @@ impl<S, L> Scene<S, L> {
         let det = duv02.x * duv12.y - duv02.y * duv12.x;
         let (dpdu, dpdv) = if det.abs() > 1e-12 {
             let inv = 1.0 / det;
-            ((dp02 * duv12.y - dp12 * duv02.y) * inv, (dp12 * duv02.x - dp02 * duv12.x) * inv)
+            (
+                (dp02 * duv12.y - dp12 * duv02.y) * inv,
+                (dp12 * duv02.x - dp02 * duv12.x) * inv,
+            )
         } else {
             let a = ng.any_orthonormal_vector();
             (a, ng.cross(a))
@@ -259,7 +300,13 @@ impl<S, L> Scene<S, L> {
             let (duv1, duv2) = (uv1 - uv0, uv2 - uv0);
             let dn1 = n1 - n0;
             let dn2 = n2 - n0;
-            let dnorm = |dn_raw: Vec3A| if n_len > 0.0 { (dn_raw - n * n.dot(dn_raw)) / n_len } else { Vec3A::ZERO };
+            let dnorm = |dn_raw: Vec3A| {
+                if n_len > 0.0 {
+                    (dn_raw - n * n.dot(dn_raw)) / n_len
+                } else {
+                    Vec3A::ZERO
+                }
+            };
             sh.dpdx = dpdx;
             sh.dpdy = dpdy;
             sh.dndx = dnorm(dn1 * db1x + dn2 * db2x);

@@ -126,7 +126,11 @@ fn field<F: ShadingFloat>(hits: &[SurfaceHit], src: &[usize; MAX_LANES], f: impl
 
 #[inline(always)]
 fn field3<F: ShadingFloat>(hits: &[SurfaceHit], src: &[usize; MAX_LANES], f: impl Fn(&SurfaceHit) -> Vec3A) -> Vec3<F> {
-    Vec3::new(field(hits, src, |h| f(h).x), field(hits, src, |h| f(h).y), field(hits, src, |h| f(h).z))
+    Vec3::new(
+        field(hits, src, |h| f(h).x),
+        field(hits, src, |h| f(h).y),
+        field(hits, src, |h| f(h).z),
+    )
 }
 
 /// The globals of the hits in `group` (structure of arrays), seeded with screen-space
@@ -147,7 +151,11 @@ pub fn gather_globals<F: ShadingFloat>(hits: &[SurfaceHit], group: u32, first: u
     let mut t = field::<F>(hits, &src, |h| h.t);
     if F::HAS_DERIVS {
         let seed3 = |v: Vec3<F>, dx: Vec3<F>, dy: Vec3<F>| {
-            Vec3::new(v.x.with_derivs(dx.x, dy.x), v.y.with_derivs(dx.y, dy.y), v.z.with_derivs(dx.z, dy.z))
+            Vec3::new(
+                v.x.with_derivs(dx.x, dy.x),
+                v.y.with_derivs(dx.y, dy.y),
+                v.z.with_derivs(dx.z, dy.z),
+            )
         };
         let dpdx = field3::<F>(hits, &src, |h| h.dpdx);
         let dpdy = field3::<F>(hits, &src, |h| h.dpdy);
@@ -212,7 +220,11 @@ where
 {
     debug_assert!(F::LANES <= MAX_LANES && lanes.hits.len() >= F::LANES && lanes.dirs.len() >= F::LANES);
     let scene = tracer.scene;
-    let all = if F::LANES >= 32 { u32::MAX } else { (1u32 << F::LANES) - 1 };
+    let all = if F::LANES >= 32 {
+        u32::MAX
+    } else {
+        (1u32 << F::LANES) - 1
+    };
     let active = lanes.active & all;
     let miss = active & !lanes.hit;
     let mut result = Color::<F>::zero();
@@ -240,7 +252,11 @@ where
         }
         remaining &= !group;
         let c = how.shade_group(tracer, lanes, group, first, depth);
-        result = if group == active { c } else { Color::select(lane_mask::<F>(group), c, result) };
+        result = if group == active {
+            c
+        } else {
+            Color::select(lane_mask::<F>(group), c, result)
+        };
     }
     result
 }
@@ -252,7 +268,14 @@ where
 pub trait GroupShading<F: ShadingFloat, S, L>: Copy {
     /// The colour of the lanes of `group`, all of which hit `lanes.hits[first].surface`
     /// (other lanes: any finite value).
-    fn shade_group(self, tracer: Tracer<'_, S, L>, lanes: &Lanes<'_>, group: u32, first: usize, depth: Depth) -> Color<F>;
+    fn shade_group(
+        self,
+        tracer: Tracer<'_, S, L>,
+        lanes: &Lanes<'_>,
+        group: u32,
+        first: usize,
+        depth: Depth,
+    ) -> Color<F>;
 }
 
 /// Every group shaded by its surface shader instantiated for `F` as is (with `F = Dual<_>`
@@ -262,7 +285,14 @@ pub struct PlainShading;
 
 impl<F: ShadingFloat, S: SurfaceShader, L: LightShader> GroupShading<F, S, L> for PlainShading {
     #[inline(always)]
-    fn shade_group(self, tracer: Tracer<'_, S, L>, lanes: &Lanes<'_>, group: u32, first: usize, depth: Depth) -> Color<F> {
+    fn shade_group(
+        self,
+        tracer: Tracer<'_, S, L>,
+        lanes: &Lanes<'_>,
+        group: u32,
+        first: usize,
+        depth: Depth,
+    ) -> Color<F> {
         shade_group::<F, S, L>(tracer, lanes, group, first, depth)
     }
 }
@@ -288,7 +318,14 @@ impl FilteredShading<'_> {
 
 impl<F: ShadingFloat, S: SurfaceShader, L: LightShader> GroupShading<F, S, L> for FilteredShading<'_> {
     #[inline(always)]
-    fn shade_group(self, tracer: Tracer<'_, S, L>, lanes: &Lanes<'_>, group: u32, first: usize, depth: Depth) -> Color<F> {
+    fn shade_group(
+        self,
+        tracer: Tracer<'_, S, L>,
+        lanes: &Lanes<'_>,
+        group: u32,
+        first: usize,
+        depth: Depth,
+    ) -> Color<F> {
         let surface = lanes.hits[first].surface as usize;
         if !F::HAS_DERIVS && self.uses_derivatives.get(surface).copied().unwrap_or(false) {
             let c = shade_group::<Dual<F>, S, L>(tracer, lanes, group, first, depth);
@@ -328,7 +365,14 @@ where
     G: GroupShading<F, S, L>,
 {
     #[inline(always)]
-    fn shade_group(self, tracer: Tracer<'_, S, L>, lanes: &Lanes<'_>, group: u32, first: usize, depth: Depth) -> Color<F> {
+    fn shade_group(
+        self,
+        tracer: Tracer<'_, S, L>,
+        lanes: &Lanes<'_>,
+        group: u32,
+        first: usize,
+        depth: Depth,
+    ) -> Color<F> {
         let shader = &tracer.scene.surfaces[lanes.hits[first].surface as usize];
         let globals = gather_globals::<F>(lanes.hits, group, first);
         match (self.kernel)(shader, &globals) {
@@ -348,7 +392,11 @@ where
 {
     let shader = &tracer.scene.surfaces[lanes.hits[first].surface as usize];
     let mask = lane_mask::<F>(group);
-    let mut ctx = SceneContext { globals: gather_globals::<F>(lanes.hits, group, first), tracer, depth };
+    let mut ctx = SceneContext {
+        globals: gather_globals::<F>(lanes.hits, group, first),
+        tracer,
+        depth,
+    };
     let mut e = Exec::with_mask(mask);
     let out = shader.shade(&mut ctx, &mut e);
     composite::<F, S, L>(tracer, lanes, group, depth, out)
@@ -356,7 +404,13 @@ where
 
 /// `Ci` of the lanes of `group`, with what lies behind composited where `Oi < 1`.
 #[inline(always)]
-fn composite<F, S, L>(tracer: Tracer<'_, S, L>, lanes: &Lanes<'_>, group: u32, depth: Depth, out: SurfaceOutput<F>) -> Color<F>
+fn composite<F, S, L>(
+    tracer: Tracer<'_, S, L>,
+    lanes: &Lanes<'_>,
+    group: u32,
+    depth: Depth,
+    out: SurfaceOutput<F>,
+) -> Color<F>
 where
     F: ShadingFloat,
     S: SurfaceShader,
@@ -386,7 +440,10 @@ where
         &dirs,
         bits,
         lanes.camera,
-        Depth { trace: depth.trace, layer: depth.layer + 1 },
+        Depth {
+            trace: depth.trace,
+            layer: depth.layer + 1,
+        },
     );
     let composite = out.Ci + (Color::splat(one) - out.Oi) * behind;
     Color::select(see_through, composite, out.Ci)
@@ -420,13 +477,24 @@ where
             hit_bits |= 1 << i;
         }
     }
-    let lanes = Lanes { hits: &hits, dirs, active, hit: hit_bits, camera };
+    let lanes = Lanes {
+        hits: &hits,
+        dirs,
+        active,
+        hit: hit_bits,
+        camera,
+    };
     shade_lanes::<F, S, L>(tracer, &lanes, depth)
 }
 
 /// Visibility (0 or 1 per lane) of a light from the points `p` in the lanes of `mask`.
 #[inline(never)]
-fn shadow_visibility<F: ShadingFloat, S, L>(scene: &Scene<S, L>, mask: F::Mask, p: Vec3<F>, light: &LightOutput<F>) -> F {
+fn shadow_visibility<F: ShadingFloat, S, L>(
+    scene: &Scene<S, L>,
+    mask: F::Mask,
+    p: Vec3<F>,
+    light: &LightOutput<F>,
+) -> F {
     let mut vis = [1.0f32; MAX_LANES];
     for (i, v) in vis.iter_mut().enumerate().take(F::LANES) {
         if !mask.lane(i) {
@@ -474,7 +542,11 @@ impl<F: ShadingFloat, S: SurfaceShader, L: LightShader> ShadingContext<F> for Sc
             e,
             p,
             cone,
-            |mask, p, out| tracer.shadows.then(|| Color::splat(shadow_visibility::<F, S, L>(tracer.scene, mask, p, out))),
+            |mask, p, out| {
+                tracer
+                    .shadows
+                    .then(|| Color::splat(shadow_visibility::<F, S, L>(tracer.scene, mask, p, out)))
+            },
             body,
         );
     }
@@ -504,7 +576,10 @@ impl<F: ShadingFloat, S: SurfaceShader, L: LightShader> ShadingContext<F> for Sc
             &dirs,
             bits,
             false,
-            Depth { trace: self.depth.trace + 1, layer: self.depth.layer },
+            Depth {
+                trace: self.depth.trace + 1,
+                layer: self.depth.layer,
+            },
         )
     }
 }

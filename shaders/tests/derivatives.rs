@@ -32,7 +32,7 @@ fn checker_edges_are_filtered_with_derivatives() {
 fn brick_joints_are_filtered_with_derivatives() {
     let b = Brick::default();
     let t = D::new(0.04, 0.0, 0.0); // middle of the first row
-    // The first vertical joint is centred on s = 0 (mortar half-width 0.005).
+                                    // The first vertical joint is centred on s = 0 (mortar half-width 0.005).
     let inb = |s: f64, ds: f64| b.pattern(D::new(s, ds, 0.0), t).0.lane(0);
     assert_eq!(inb(0.1, 0.001), 1.0);
     let edge = inb(0.005, 0.002);
@@ -46,12 +46,19 @@ fn every_surface_with_zero_derivatives_matches_f64() {
     let lights = table1_lights();
     for surface in Surface::all() {
         for (u, v) in [(0.13, 0.71), (0.52, 0.27), (0.91, 0.64)] {
-            let mut cd = PointContext::new(Globals::<D>::unit_square(D::new(u, 0.0, 0.0), D::new(v, 0.0, 0.0)), &lights);
+            let mut cd = PointContext::new(
+                Globals::<D>::unit_square(D::new(u, 0.0, 0.0), D::new(v, 0.0, 0.0)),
+                &lights,
+            );
             let a = surface.shade(&mut cd, &mut Exec::new());
             let mut cf = PointContext::new(Globals::<f64>::unit_square(u, v), &lights);
             let b = surface.shade(&mut cf, &mut Exec::new());
             for k in 0..3 {
-                assert!((a.Ci.lane(0)[k] - b.Ci.lane(0)[k]).abs() < 1e-12, "{} at ({u}, {v})", surface.name());
+                assert!(
+                    (a.Ci.lane(0)[k] - b.Ci.lane(0)[k]).abs() < 1e-12,
+                    "{} at ({u}, {v})",
+                    surface.name()
+                );
                 assert_eq!(a.Oi.lane(0)[k], b.Oi.lane(0)[k]);
             }
         }

@@ -21,10 +21,17 @@ pub fn ambient<F: ShadingFloat, C: ShadingContext<F>>(ctx: &mut C, e: &Exec<F>) 
 pub fn diffuse<F: ShadingFloat, C: ShadingContext<F>>(ctx: &mut C, e: &mut Exec<F>, n: Vec3<F>) -> Color<F> {
     let p = ctx.globals().P;
     let mut c = Color::zero();
-    ctx.illuminance(e, "", p, Some((n, F::c(PI / 2.0))), #[inline(always)] |e, l, cl| {
-        let w = l.normalize().dot(n).max(F::c(0.0));
-        e.update(&mut c, |c| c + cl * w);
-    });
+    ctx.illuminance(
+        e,
+        "",
+        p,
+        Some((n, F::c(PI / 2.0))),
+        #[inline(always)]
+        |e, l, cl| {
+            let w = l.normalize().dot(n).max(F::c(0.0));
+            e.update(&mut c, |c| c + cl * w);
+        },
+    );
     c
 }
 
@@ -47,17 +54,24 @@ pub fn diffuse_specular<F: ShadingFloat, C: ShadingContext<F>>(
     let mut spec = Color::zero();
     let exponent = F::c(1.0) / roughness;
     let zero = F::c(0.0);
-    ctx.illuminance(e, "", p, None, #[inline(always)] |e, l, cl| {
-        let lu = l.normalize();
-        let ndl = lu.dot(n);
-        e.update(&mut diff, |d| d + cl * ndl.max(zero));
-        // n·normalize(h) without forming normalize(h).
-        let h = lu + v;
-        let h2 = h.dot(h);
-        let ndh = (n.dot(h) * F::select(h2.gt(zero), F::c(1.0) / h2.sqrt(), zero)).max(zero);
-        let s = ndh.pow(exponent);
-        e.update(&mut spec, |sp| sp + cl * F::select(ndl.gt(zero), s, zero));
-    });
+    ctx.illuminance(
+        e,
+        "",
+        p,
+        None,
+        #[inline(always)]
+        |e, l, cl| {
+            let lu = l.normalize();
+            let ndl = lu.dot(n);
+            e.update(&mut diff, |d| d + cl * ndl.max(zero));
+            // n·normalize(h) without forming normalize(h).
+            let h = lu + v;
+            let h2 = h.dot(h);
+            let ndh = (n.dot(h) * F::select(h2.gt(zero), F::c(1.0) / h2.sqrt(), zero)).max(zero);
+            let s = ndh.pow(exponent);
+            e.update(&mut spec, |sp| sp + cl * F::select(ndl.gt(zero), s, zero));
+        },
+    );
     (diff, spec)
 }
 
@@ -85,9 +99,16 @@ pub fn specular<F: ShadingFloat, C: ShadingContext<F>>(
 ) -> Color<F> {
     let p = ctx.globals().P;
     let mut c = Color::zero();
-    ctx.illuminance(e, "", p, Some((n, F::c(PI / 2.0))), #[inline(always)] |e, l, cl| {
-        e.update(&mut c, |c| c + cl * specularbrdf(l, n, v, roughness));
-    });
+    ctx.illuminance(
+        e,
+        "",
+        p,
+        Some((n, F::c(PI / 2.0))),
+        #[inline(always)]
+        |e, l, cl| {
+            e.update(&mut c, |c| c + cl * specularbrdf(l, n, v, roughness));
+        },
+    );
     c
 }
 
@@ -104,9 +125,16 @@ pub fn phong<F: ShadingFloat, C: ShadingContext<F>>(
     let p = ctx.globals().P;
     let r = super::math::reflect(-v, n);
     let mut c = Color::zero();
-    ctx.illuminance(e, "", p, Some((n, F::c(PI / 2.0))), #[inline(always)] |e, l, cl| {
-        let w = r.dot(l.normalize()).max(F::c(0.0)).pow(size);
-        e.update(&mut c, |c| c + cl * w);
-    });
+    ctx.illuminance(
+        e,
+        "",
+        p,
+        Some((n, F::c(PI / 2.0))),
+        #[inline(always)]
+        |e, l, cl| {
+            let w = r.dot(l.normalize()).max(F::c(0.0)).pow(size);
+            e.update(&mut c, |c| c + cl * w);
+        },
+    );
     c
 }

@@ -129,9 +129,21 @@ pub fn perlin4<F: ShadingFloat>(p: Vec3<F>, t: F, period: Option<(Vec3<F>, F)>, 
     let c = |i, j, k, l, x, y, z, w| grad4::<F>(lattice_hash(&[i, j, k, l], seed), x, y, z, w);
     let (u, v, s, r) = (fade(fx), fade(fy), fade(fz), fade(fw));
     let slice = |l, gw: F| {
-        let x00 = lerp(u, c(i0, j0, k0, l, fx, fy, fz, gw), c(i1, j0, k0, l, fx - one, fy, fz, gw));
-        let x10 = lerp(u, c(i0, j1, k0, l, fx, fy - one, fz, gw), c(i1, j1, k0, l, fx - one, fy - one, fz, gw));
-        let x01 = lerp(u, c(i0, j0, k1, l, fx, fy, fz - one, gw), c(i1, j0, k1, l, fx - one, fy, fz - one, gw));
+        let x00 = lerp(
+            u,
+            c(i0, j0, k0, l, fx, fy, fz, gw),
+            c(i1, j0, k0, l, fx - one, fy, fz, gw),
+        );
+        let x10 = lerp(
+            u,
+            c(i0, j1, k0, l, fx, fy - one, fz, gw),
+            c(i1, j1, k0, l, fx - one, fy - one, fz, gw),
+        );
+        let x01 = lerp(
+            u,
+            c(i0, j0, k1, l, fx, fy, fz - one, gw),
+            c(i1, j0, k1, l, fx - one, fy, fz - one, gw),
+        );
         let x11 = lerp(
             u,
             c(i0, j1, k1, l, fx, fy - one, fz - one, gw),
@@ -179,12 +191,14 @@ fn signed<F: ShadingFloat>(d: NoiseDomain<F>, period: Option<NoiseDomain<F>>, se
     // Unused axes sit at a non-lattice offset so 1D/2D noise is not identically 0 there.
     let off = F::c(0.5);
     let n = match d {
-        NoiseDomain::D1(x) => {
-            perlin3(Vec3::new(x, off, off), period.map(|p| match p {
+        NoiseDomain::D1(x) => perlin3(
+            Vec3::new(x, off, off),
+            period.map(|p| match p {
                 NoiseDomain::D1(px) => Vec3::new(px, F::c(1e9), F::c(1e9)),
                 _ => Vec3::splat(F::c(1e9)),
-            }), seed)
-        }
+            }),
+            seed,
+        ),
         NoiseDomain::D2(x, y) => perlin3(
             Vec3::new(x, y, off),
             period.map(|p| match p {

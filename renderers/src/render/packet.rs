@@ -61,14 +61,28 @@ where
 /// # Panics
 /// As [`render_packet_split`].
 #[must_use]
-pub fn render_packet_stats<F, S, L>(scene: &Scene<S, L>, opts: &RenderOptions, packet_lanes: usize) -> (Image, PacketStats)
+pub fn render_packet_stats<F, S, L>(
+    scene: &Scene<S, L>,
+    opts: &RenderOptions,
+    packet_lanes: usize,
+) -> (Image, PacketStats)
 where
     F: ShadingFloat,
     S: SurfaceShader,
     L: LightShader,
 {
     let derivs = FilteredShading::flags(&scene.surfaces, opts.derivatives);
-    measured(|stats| packet_render::<F, S, L, _>(scene, opts, packet_lanes, stats, FilteredShading { uses_derivatives: &derivs }))
+    measured(|stats| {
+        packet_render::<F, S, L, _>(
+            scene,
+            opts,
+            packet_lanes,
+            stats,
+            FilteredShading {
+                uses_derivatives: &derivs,
+            },
+        )
+    })
 }
 
 /// [`render_packet_stats`] with a caller's shading kernel: for every group of lanes that hit
@@ -81,7 +95,12 @@ where
 /// # Panics
 /// As [`render_packet_split`].
 #[must_use]
-pub fn render_packet_kernel<F, S, L, K>(scene: &Scene<S, L>, opts: &RenderOptions, packet_lanes: usize, kernel: &K) -> (Image, PacketStats)
+pub fn render_packet_kernel<F, S, L, K>(
+    scene: &Scene<S, L>,
+    opts: &RenderOptions,
+    packet_lanes: usize,
+    kernel: &K,
+) -> (Image, PacketStats)
 where
     F: ShadingFloat,
     S: SurfaceShader,
@@ -89,7 +108,12 @@ where
     K: Fn(&S, &Globals<F>) -> Option<SurfaceOutput<F>> + Sync,
 {
     let derivs = FilteredShading::flags(&scene.surfaces, opts.derivatives);
-    let how = KernelShading { kernel, fallback: FilteredShading { uses_derivatives: &derivs } };
+    let how = KernelShading {
+        kernel,
+        fallback: FilteredShading {
+            uses_derivatives: &derivs,
+        },
+    };
     render_packet_with::<F, S, L, _>(scene, opts, packet_lanes, how)
 }
 
@@ -102,7 +126,12 @@ where
 /// # Panics
 /// As [`render_packet_split`].
 #[must_use]
-pub fn render_packet_with<F, S, L, G>(scene: &Scene<S, L>, opts: &RenderOptions, packet_lanes: usize, how: G) -> (Image, PacketStats)
+pub fn render_packet_with<F, S, L, G>(
+    scene: &Scene<S, L>,
+    opts: &RenderOptions,
+    packet_lanes: usize,
+    how: G,
+) -> (Image, PacketStats)
 where
     F: ShadingFloat,
     S: SurfaceShader,
@@ -140,7 +169,15 @@ where
     L: LightShader,
 {
     let derivs = FilteredShading::flags(&scene.surfaces, opts.derivatives);
-    packet_render::<F, S, L, _>(scene, opts, packet_lanes, None, FilteredShading { uses_derivatives: &derivs })
+    packet_render::<F, S, L, _>(
+        scene,
+        opts,
+        packet_lanes,
+        None,
+        FilteredShading {
+            uses_derivatives: &derivs,
+        },
+    )
 }
 
 /// The packet renderer; `stats` = (shading nanoseconds, shaded points) to measure into,
@@ -169,7 +206,10 @@ where
     let n = opts.grid();
     let weight = 1.0 / (n * n) as f32;
     let footprint = 1.0 / n as f32;
-    let tracer = Tracer { scene, shadows: opts.shadows };
+    let tracer = Tracer {
+        scene,
+        shadows: opts.shadows,
+    };
     let band_rows = 8u32.max(bh);
     let label = format!("packet {}×{} {}", bw, bh, F::NAME);
 

@@ -32,6 +32,11 @@ impl LightShader for PointLight {
         } else {
             c / l.dot(l).pow(F::c(self.falloff * 0.5))
         };
-        LightOutput { cl, l, lit, emission: Emission::Local }
+        LightOutput {
+            cl,
+            l,
+            lit,
+            emission: Emission::Local,
+        }
     }
 }

@@ -37,8 +37,13 @@ impl SurfaceShader for Glass {
         let g = *ctx.globals();
         let (nf, v) = view_frame(&g);
         let zero = F::c(0.0);
-        let finish =
-            Finish { ka: self.Ka, kd: self.Kd, ks: self.Ks, roughness: self.roughness, specularcolor: self.specularcolor };
+        let finish = Finish {
+            ka: self.Ka,
+            kd: self.Kd,
+            ks: self.Ks,
+            roughness: self.roughness,
+            specularcolor: self.specularcolor,
+        };
         let mut ci = if self.Ka != 0.0 || self.Kd != 0.0 {
             finish.plastic(ctx, e, nf, v, g.Cs)
         } else if self.Ks != 0.0 {
@@ -52,14 +57,25 @@ impl SurfaceShader for Glass {
         let fr = fresnel(g.I, nf, ratio);
         let wr = fr.kr * F::c(self.Kr);
         let wt = fr.kt * F::c(self.Kt);
-        e.if_(wr.gt(zero), #[inline(always)] |e| {
-            let c = ctx.trace(e, g.P, fr.r);
-            e.update(&mut ci, |ci| ci + c * wr);
-        });
-        e.if_(wt.gt(zero), #[inline(always)] |e| {
-            let c = ctx.trace(e, g.P, fr.t);
-            e.update(&mut ci, |ci| ci + c * wt);
-        });
-        SurfaceOutput { Ci: ci, Oi: Color::splat(F::c(1.0)) }
+        e.if_(
+            wr.gt(zero),
+            #[inline(always)]
+            |e| {
+                let c = ctx.trace(e, g.P, fr.r);
+                e.update(&mut ci, |ci| ci + c * wr);
+            },
+        );
+        e.if_(
+            wt.gt(zero),
+            #[inline(always)]
+            |e| {
+                let c = ctx.trace(e, g.P, fr.t);
+                e.update(&mut ci, |ci| ci + c * wt);
+            },
+        );
+        SurfaceOutput {
+            Ci: ci,
+            Oi: Color::splat(F::c(1.0)),
+        }
     }
 }

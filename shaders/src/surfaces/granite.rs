@@ -63,8 +63,13 @@ impl SurfaceShader for Granite {
         let t = clamp(F::c(self.contrast) * self.turbulence(g.P), F::c(0.0), F::c(1.0));
         let dark = Color::from_array(self.darkcolor);
         let ct = g.Cs * (dark + (Color::from_array(self.lightcolor) - dark) * t);
-        let finish =
-            Finish { ka: self.Ka, kd: self.Kd, ks: self.Ks, roughness: self.roughness, specularcolor: self.specularcolor };
+        let finish = Finish {
+            ka: self.Ka,
+            kd: self.Kd,
+            ks: self.Ks,
+            roughness: self.roughness,
+            specularcolor: self.specularcolor,
+        };
         let c = finish.plastic(ctx, e, nf, v, ct);
         SurfaceOutput { Ci: g.Os * c, Oi: g.Os }
     }

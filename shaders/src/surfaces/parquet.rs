@@ -107,8 +107,13 @@ impl SurfaceShader for Parquet {
         let (in_plank, wood) = self.pattern(g.s, g.t);
         let groove = Color::from_array(self.groovecolor);
         let ct = groove + (wood - groove) * in_plank;
-        let finish =
-            Finish { ka: self.Ka, kd: self.Kd, ks: self.Ks, roughness: self.roughness, specularcolor: self.specularcolor };
+        let finish = Finish {
+            ka: self.Ka,
+            kd: self.Kd,
+            ks: self.Ks,
+            roughness: self.roughness,
+            specularcolor: self.specularcolor,
+        };
         let l = finish.light_sums(ctx, e, nf, v);
         let c = finish.matte_part(ct, &l) + finish.specular_part(&l) * in_plank;
         SurfaceOutput { Ci: g.Os * c, Oi: g.Os }

@@ -40,14 +40,26 @@ impl SurfaceShader for Screen {
     #[inline(always)]
     fn shade<F: ShadingFloat, C: ShadingContext<F>>(&self, ctx: &mut C, e: &mut Exec<F>) -> SurfaceOutput<F> {
         let g = *ctx.globals();
-        let mut out = SurfaceOutput { Ci: Color::zero(), Oi: Color::zero() };
-        let finish =
-            Finish { ka: self.Ka, kd: self.Kd, ks: self.Ks, roughness: self.roughness, specularcolor: self.specularcolor };
-        e.if_(self.wire(g.s, g.t), #[inline(always)] |e| {
-            let (nf, v) = view_frame(&g);
-            let c = finish.plastic(ctx, e, nf, v, g.Cs);
-            e.assign(&mut out, SurfaceOutput { Ci: g.Os * c, Oi: g.Os });
-        });
+        let mut out = SurfaceOutput {
+            Ci: Color::zero(),
+            Oi: Color::zero(),
+        };
+        let finish = Finish {
+            ka: self.Ka,
+            kd: self.Kd,
+            ks: self.Ks,
+            roughness: self.roughness,
+            specularcolor: self.specularcolor,
+        };
+        e.if_(
+            self.wire(g.s, g.t),
+            #[inline(always)]
+            |e| {
+                let (nf, v) = view_frame(&g);
+                let c = finish.plastic(ctx, e, nf, v, g.Cs);
+                e.assign(&mut out, SurfaceOutput { Ci: g.Os * c, Oi: g.Os });
+            },
+        );
         out
     }
 }

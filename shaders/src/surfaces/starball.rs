@@ -55,7 +55,11 @@ impl Starball {
         let (ex, ey) = (F::c(vx - rmax), F::c(vy));
         let inside = (ex * qy - ey * (qx - F::c(rmax))).ge(F::c(0.0));
         let in_band = d.y.abs().le(F::c(self.bandwidth));
-        let body = Color::select(in_band, Color::from_array(self.bandcolor), Color::from_array(self.ballcolor));
+        let body = Color::select(
+            in_band,
+            Color::from_array(self.bandcolor),
+            Color::from_array(self.ballcolor),
+        );
         Color::select(inside, Color::from_array(self.starcolor), body)
     }
 }
@@ -66,8 +70,13 @@ impl SurfaceShader for Starball {
         let g = *ctx.globals();
         let (nf, v) = view_frame(&g);
         let ct = self.color(g.P);
-        let finish =
-            Finish { ka: self.Ka, kd: self.Kd, ks: self.Ks, roughness: self.roughness, specularcolor: self.specularcolor };
+        let finish = Finish {
+            ka: self.Ka,
+            kd: self.Kd,
+            ks: self.Ks,
+            roughness: self.roughness,
+            specularcolor: self.specularcolor,
+        };
         let c = finish.plastic(ctx, e, nf, v, ct);
         SurfaceOutput { Ci: g.Os * c, Oi: g.Os }
     }

@@ -56,8 +56,13 @@ impl SurfaceShader for Wood {
         let g = *ctx.globals();
         let (nf, v) = view_frame(&g);
         let ct = self.color(g.P);
-        let finish =
-            Finish { ka: self.Ka, kd: self.Kd, ks: self.Ks, roughness: self.roughness, specularcolor: self.specularcolor };
+        let finish = Finish {
+            ka: self.Ka,
+            kd: self.Kd,
+            ks: self.Ks,
+            roughness: self.roughness,
+            specularcolor: self.specularcolor,
+        };
         let c = finish.plastic(ctx, e, nf, v, ct);
         SurfaceOutput { Ci: g.Os * c, Oi: g.Os }
     }

@@ -110,12 +110,9 @@ pub fn globals_lanes<F: ShadingFloat>(xs: &[Sample]) -> Globals<F> {
     assert_eq!(xs.len(), F::LANES);
     let g: Vec<Globals<f64>> = xs.iter().map(globals::<f64>).collect();
     let f = |get: &dyn Fn(&Globals<f64>) -> f64| F::from_lanes(&g.iter().map(get).collect::<Vec<_>>());
-    let v = |get: &dyn Fn(&Globals<f64>) -> Vec3<f64>| {
-        Vec3::new(f(&|x| get(x).x), f(&|x| get(x).y), f(&|x| get(x).z))
-    };
-    let c = |get: &dyn Fn(&Globals<f64>) -> Color<f64>| {
-        Color::new(f(&|x| get(x).r), f(&|x| get(x).g), f(&|x| get(x).b))
-    };
+    let v = |get: &dyn Fn(&Globals<f64>) -> Vec3<f64>| Vec3::new(f(&|x| get(x).x), f(&|x| get(x).y), f(&|x| get(x).z));
+    let c =
+        |get: &dyn Fn(&Globals<f64>) -> Color<f64>| Color::new(f(&|x| get(x).r), f(&|x| get(x).g), f(&|x| get(x).b));
     Globals {
         P: v(&|x| x.P),
         N: v(&|x| x.N),
