@@ -44,6 +44,48 @@ pub struct Globals<F> {
     pub Os: Color<F>,
 }
 
+impl<F: Copy> Globals<F> {
+    /// The same globals with every number transformed by `f` (e.g. to change the number type,
+    /// or to step along derivative seeds).
+    #[must_use]
+    pub fn map<G>(&self, f: impl Fn(F) -> G) -> Globals<G> {
+        self.zip(self, |a, _| f(a))
+    }
+
+    /// Combines two sets of globals number by number (e.g. lower and upper bounds into
+    /// intervals).
+    #[must_use]
+    pub fn zip<G: Copy, H>(&self, o: &Globals<G>, f: impl Fn(F, G) -> H) -> Globals<H> {
+        let v = |a: Vec3<F>, b: Vec3<G>| Vec3 {
+            x: f(a.x, b.x),
+            y: f(a.y, b.y),
+            z: f(a.z, b.z),
+        };
+        let c = |a: Color<F>, b: Color<G>| Color {
+            r: f(a.r, b.r),
+            g: f(a.g, b.g),
+            b: f(a.b, b.b),
+        };
+        Globals {
+            P: v(self.P, o.P),
+            N: v(self.N, o.N),
+            Ng: v(self.Ng, o.Ng),
+            I: v(self.I, o.I),
+            E: v(self.E, o.E),
+            s: f(self.s, o.s),
+            t: f(self.t, o.t),
+            u: f(self.u, o.u),
+            v: f(self.v, o.v),
+            du: f(self.du, o.du),
+            dv: f(self.dv, o.dv),
+            dPdu: v(self.dPdu, o.dPdu),
+            dPdv: v(self.dPdv, o.dPdv),
+            Cs: c(self.Cs, o.Cs),
+            Os: c(self.Os, o.Os),
+        }
+    }
+}
+
 impl<F: ShadingFloat> Globals<F> {
     /// A unit square in the z = 0 plane facing a camera at (0, 0, 1): the default point set of
     /// `testshade`-style evaluation. `s`, `t`, `u`, `v` are taken from `(u, v)`.

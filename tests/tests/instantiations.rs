@@ -107,25 +107,7 @@ fn simd_lanes_equal_scalar() {
 
 /// Offsets globals along their screen-space derivative seeds by `h` pixels in x or y.
 fn shifted(g: &Globals<Dual<f64>>, h: f64, along_x: bool) -> Globals<f64> {
-    let f = |d: Dual<f64>| d.val + h * if along_x { d.ddx } else { d.ddy };
-    let v = |p: Vec3<Dual<f64>>| Vec3::new(f(p.x), f(p.y), f(p.z));
-    Globals {
-        P: v(g.P),
-        N: v(g.N),
-        Ng: v(g.Ng),
-        I: v(g.I),
-        E: v(g.E),
-        s: f(g.s),
-        t: f(g.t),
-        u: f(g.u),
-        v: f(g.v),
-        du: f(g.du),
-        dv: f(g.dv),
-        dPdu: v(g.dPdu),
-        dPdv: v(g.dPdv),
-        Cs: Color::new(f(g.Cs.r), f(g.Cs.g), f(g.Cs.b)),
-        Os: Color::new(f(g.Os.r), f(g.Os.g), f(g.Os.b)),
-    }
+    g.map(|d| d.val + h * if along_x { d.ddx } else { d.ddy })
 }
 
 /// Dual derivatives agree with central finite differences in smooth regions. A point is
@@ -215,26 +197,7 @@ fn make_box(set: &PointSet, i: usize, r: f32) -> GBox {
 }
 
 fn interval_globals(b: &GBox) -> Globals<Interval<f32>> {
-    let iv = |a: f32, c: f32| Interval::new(a, c);
-    let v3 = |a: Vec3<f32>, c: Vec3<f32>| Vec3::new(iv(a.x, c.x), iv(a.y, c.y), iv(a.z, c.z));
-    let c3 = |a: Color<f32>, c: Color<f32>| Color::new(iv(a.r, c.r), iv(a.g, c.g), iv(a.b, c.b));
-    Globals {
-        P: v3(b.lo.P, b.hi.P),
-        N: v3(b.lo.N, b.hi.N),
-        Ng: v3(b.lo.Ng, b.hi.Ng),
-        I: v3(b.lo.I, b.hi.I),
-        E: v3(b.lo.E, b.hi.E),
-        s: iv(b.lo.s, b.hi.s),
-        t: iv(b.lo.t, b.hi.t),
-        u: iv(b.lo.u, b.hi.u),
-        v: iv(b.lo.v, b.hi.v),
-        du: iv(b.lo.du, b.hi.du),
-        dv: iv(b.lo.dv, b.hi.dv),
-        dPdu: v3(b.lo.dPdu, b.hi.dPdu),
-        dPdv: v3(b.lo.dPdv, b.hi.dPdv),
-        Cs: c3(b.lo.Cs, b.hi.Cs),
-        Os: c3(b.lo.Os, b.hi.Os),
-    }
+    b.lo.zip(&b.hi, Interval::new)
 }
 
 fn sample_box(b: &GBox, rng: &mut SplitMix64) -> Globals<f32> {
@@ -387,24 +350,5 @@ fn extreme_inputs() {
 
 /// The same scalar globals in every lane of another instantiation.
 fn lift<F: ShadingFloat>(g: &Globals<f32>) -> Globals<F> {
-    let f = |x: f32| F::c(x as f64);
-    let v = |p: Vec3<f32>| Vec3::new(f(p.x), f(p.y), f(p.z));
-    let c = |p: Color<f32>| Color::new(f(p.r), f(p.g), f(p.b));
-    Globals {
-        P: v(g.P),
-        N: v(g.N),
-        Ng: v(g.Ng),
-        I: v(g.I),
-        E: v(g.E),
-        s: f(g.s),
-        t: f(g.t),
-        u: f(g.u),
-        v: f(g.v),
-        du: f(g.du),
-        dv: f(g.dv),
-        dPdu: v(g.dPdu),
-        dPdv: v(g.dPdv),
-        Cs: c(g.Cs),
-        Os: c(g.Os),
-    }
+    g.map(|x| F::c(x as f64))
 }
