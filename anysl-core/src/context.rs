@@ -298,6 +298,9 @@ pub fn run_illuminance<F, L, V, B>(
 {
     let cone = cone.map(|(axis, angle)| ConeTest::new(axis, angle));
     for light in lights {
+        if light.emission() == Some(Emission::Ambient) {
+            continue;
+        }
         let out = light.light(e, p);
         if out.emission == Emission::Ambient {
             continue;
@@ -327,6 +330,9 @@ pub fn run_illuminance<F, L, V, B>(
 pub fn sum_ambient<F: ShadingFloat, L: LightShader>(lights: &[L], e: &Exec<F>, p: Vec3<F>) -> Color<F> {
     let mut sum = Color::zero();
     for light in lights {
+        if matches!(light.emission(), Some(Emission::Local | Emission::Distant)) {
+            continue;
+        }
         let mut le = *e;
         let out = light.light(&mut le, p);
         if out.emission == Emission::Ambient {

@@ -1,7 +1,7 @@
 //! Shader traits and parameter metadata (name, type, default, uniform/varying, output), with
 //! setting parameters by name — the same for shaders written in Rust and loaded from `.sl`.
 
-use crate::context::{LightOutput, ShadingContext, SurfaceOutput};
+use crate::context::{Emission, LightOutput, ShadingContext, SurfaceOutput};
 use crate::exec::Exec;
 use crate::float::ShadingFloat;
 use crate::vec::Vec3;
@@ -361,6 +361,14 @@ pub trait SurfaceVisitor {
 pub trait LightShader: Shader {
     /// Evaluates the light for the points `ps` (live lanes in `e`).
     fn light<F: ShadingFloat>(&self, e: &mut Exec<F>, ps: Vec3<F>) -> LightOutput<F>;
+
+    /// How this light always emits, when that is known without evaluating it (`None`: it
+    /// depends on the evaluation). The light loops use it to skip lights they cannot use —
+    /// `illuminance` never evaluates an ambient light, `ambient()` never a directed one.
+    #[inline(always)]
+    fn emission(&self) -> Option<Emission> {
+        None
+    }
 }
 
 /// A displacement shader: moves P and sets N.

@@ -217,6 +217,16 @@ impl LightShader for Light {
             Self::Ambient(l) => l.light(e, ps),
         }
     }
+
+    #[inline(always)]
+    fn emission(&self) -> Option<Emission> {
+        match self {
+            Self::Point(l) => l.emission(),
+            Self::Distant(l) => l.emission(),
+            Self::Spot(l) => l.emission(),
+            Self::Ambient(l) => l.emission(),
+        }
+    }
 }
 
 /// Ambient colour of the Table 1 scene (`shared/bench/shading_workload.md` §3).

@@ -15,6 +15,11 @@ anysl_core::shader_params! {
 
 impl LightShader for AmbientLight {
     #[inline(always)]
+    fn emission(&self) -> Option<Emission> {
+        Some(Emission::Ambient)
+    }
+
+    #[inline(always)]
     fn light<F: ShadingFloat>(&self, _e: &mut Exec<F>, _ps: Vec3<F>) -> LightOutput<F> {
         let cl = Color::from_array(self.lightcolor) * F::c(self.intensity);
         LightOutput {

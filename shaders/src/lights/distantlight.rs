@@ -18,6 +18,11 @@ anysl_core::shader_params! {
 
 impl LightShader for DistantLight {
     #[inline(always)]
+    fn emission(&self) -> Option<Emission> {
+        Some(Emission::Distant)
+    }
+
+    #[inline(always)]
     fn light<F: ShadingFloat>(&self, _e: &mut Exec<F>, _ps: Vec3<F>) -> LightOutput<F> {
         let (l, lit) = solar(Vec3::from_array(self.to) - Vec3::from_array(self.from));
         let cl = Color::from_array(self.lightcolor) * F::c(self.intensity);

@@ -21,6 +21,11 @@ anysl_core::shader_params! {
 
 impl LightShader for PointLight {
     #[inline(always)]
+    fn emission(&self) -> Option<Emission> {
+        Some(Emission::Local)
+    }
+
+    #[inline(always)]
     fn light<F: ShadingFloat>(&self, _e: &mut Exec<F>, ps: Vec3<F>) -> LightOutput<F> {
         let (l, lit) = illuminate(ps, Vec3::from_array(self.from), None);
         let c = Color::from_array(self.lightcolor) * F::c(self.intensity);

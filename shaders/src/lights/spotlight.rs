@@ -28,6 +28,11 @@ anysl_core::shader_params! {
 
 impl LightShader for SpotLight {
     #[inline(always)]
+    fn emission(&self) -> Option<Emission> {
+        Some(Emission::Local)
+    }
+
+    #[inline(always)]
     fn light<F: ShadingFloat>(&self, _e: &mut Exec<F>, ps: Vec3<F>) -> LightOutput<F> {
         let zero = F::c(0.0);
         let from = Vec3::from_array(self.from);
