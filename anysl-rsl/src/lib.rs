@@ -3,6 +3,12 @@
 //! The RenderMan Shading Language front end (preprocessor, parser, checker), the portable
 //! threaded IR and its back ends (generated Rust, batched interpreter).
 //!
-//! This crate is the home of that work; it is being built in a later stage of the project
-//! (see `ARCHITECTURE.md`). Today it only re-exports the core contracts the back ends target.
+//! The pipeline: [`front`] (source → tokens → AST → checked and lowered) → [`ir`] (threaded
+//! code over structured control flow) → passes → back ends.
 pub use anysl_core as core;
+
+pub mod diag;
+pub mod front;
+pub mod ir;
+pub mod span;
+pub mod types;

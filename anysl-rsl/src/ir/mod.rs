@@ -1,0 +1,472 @@
+//! The portable IR: threaded code over structured control flow.
+//!
+//! A shader compiles to one [`Function`] (RSL functions are inlined: the language forbids
+//! recursion, and every production compiler inlines them). The function has
+//!
+//! * **values** — an arena of [`Inst`]s, each defining one SSA value (`Value`), written once and
+//!   never reassigned. Every instruction is an *abstract op* keyed by operator and operand
+//!   types: `mul(float, vector)` is [`Op::Binary`]`(Mul)` whose arguments have types `float`
+//!   and `vector`; built-in calls are [`Op::Call`] with a resolved overload. Back ends implement
+//!   each op for their own types — that is what makes type replacement possible at run time;
+//! * **slots** — the named variables of the source (locals, parameters, globals, outputs),
+//!   read with [`Op::Load`] and written with [`Node::Store`]. They play the part of LLVM's entry
+//!   block `alloca`s: a back end that wants pure SSA promotes them (the JIT lets `mem2reg` do it);
+//!   the batched interpreter and generated Rust keep them as masked registers;
+//! * **a body** — a tree of [`Node`]s: structured control flow (`if`, loops with `break`/
+//!   `continue` to any enclosing level, `return` from an inlined function frame, and the
+//!   light loops). RSL has only structured control flow, so the control-flow graph is the tree's
+//!   reducible CFG (see [`cfg`]); keeping the structure lets every back end execute divergent
+//!   control flow with masks (whole-function vectorization) without rediscovering it.
+//!
+//! An instruction is placed in the body by a [`Node::Inst`]; its value is available to every
+//! node after it in the same block and in nested blocks (dominance is lexical).
+
+pub mod cfg;
+pub mod print;
+
+use crate::span::Span;
+use crate::types::{BaseType, Detail, Type};
+
+/// Handle of an SSA value (an instruction) in [`Function::insts`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct Value(pub u32);
+
+/// Handle of a variable slot in [`Function::slots`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct SlotId(pub u32);
+
+/// A compile-time constant.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Const {
+    /// A float.
+    Float(f64),
+    /// A colour, point, vector or normal.
+    Triple([f64; 3]),
+    /// A 4×4 matrix, row-major.
+    Matrix([f64; 16]),
+    /// A string.
+    Str(String),
+    /// An array of constants (all of one type).
+    Array(Vec<Const>),
+}
+
+/// The RSL global variables a shader can read (and some write).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Global {
+    /// Surface position.
+    P,
+    /// Shading normal.
+    N,
+    /// Geometric normal.
+    Ng,
+    /// Incident ray direction (from the eye to P).
+    I,
+    /// Eye position.
+    E,
+    /// Surface colour.
+    Cs,
+    /// Surface opacity.
+    Os,
+    /// Texture coordinates.
+    S,
+    /// Texture coordinates.
+    T,
+    /// Surface parameters.
+    U,
+    /// Surface parameters.
+    V,
+    /// Parameter step sizes.
+    Du,
+    /// Parameter step sizes.
+    Dv,
+    /// Surface derivatives.
+    DPdu,
+    /// Surface derivatives.
+    DPdv,
+    /// Output colour (surface, light: `Cl`).
+    Ci,
+    /// Output opacity.
+    Oi,
+    /// Light direction inside `illuminance`/`illuminate`/`solar`.
+    L,
+    /// Light colour inside `illuminance`; the light shader's output.
+    Cl,
+    /// Light opacity (unused by the renderers, kept for completeness).
+    Ol,
+    /// Light position for light shaders (`Ps`).
+    Ps,
+    /// Ray time.
+    Time,
+    /// Surface-to-light ambient `alpha` (imager shaders).
+    Alpha,
+    /// Number of components (`ncomps`, uniform).
+    Ncomps,
+}
+
+impl Global {
+    /// Every global with its RSL name.
+    pub const ALL: [(Global, &'static str); 24] = [
+        (Global::P, "P"),
+        (Global::N, "N"),
+        (Global::Ng, "Ng"),
+        (Global::I, "I"),
+        (Global::E, "E"),
+        (Global::Cs, "Cs"),
+        (Global::Os, "Os"),
+        (Global::S, "s"),
+        (Global::T, "t"),
+        (Global::U, "u"),
+        (Global::V, "v"),
+        (Global::Du, "du"),
+        (Global::Dv, "dv"),
+        (Global::DPdu, "dPdu"),
+        (Global::DPdv, "dPdv"),
+        (Global::Ci, "Ci"),
+        (Global::Oi, "Oi"),
+        (Global::L, "L"),
+        (Global::Cl, "Cl"),
+        (Global::Ol, "Ol"),
+        (Global::Ps, "Ps"),
+        (Global::Time, "time"),
+        (Global::Alpha, "alpha"),
+        (Global::Ncomps, "ncomps"),
+    ];
+
+    /// The RSL name.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        Self::ALL.iter().find(|(g, _)| *g == self).map_or("?", |(_, n)| n)
+    }
+
+    /// The global with RSL name `name`.
+    #[must_use]
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.iter().find(|(_, n)| *n == name).map(|(g, _)| *g)
+    }
+
+    /// Its type (detail as declared by the spec).
+    #[must_use]
+    pub fn ty(self) -> Type {
+        use BaseType::*;
+        match self {
+            Global::P | Global::E | Global::Ps => Type::varying(Point),
+            Global::N | Global::Ng => Type::varying(Normal),
+            Global::I | Global::DPdu | Global::DPdv | Global::L => Type::varying(Vector),
+            Global::Cs | Global::Os | Global::Ci | Global::Oi | Global::Cl | Global::Ol => Type::varying(Color),
+            Global::S | Global::T | Global::U | Global::V | Global::Du | Global::Dv | Global::Alpha => {
+                Type::varying(Float)
+            }
+            Global::Time | Global::Ncomps => Type::uniform(Float),
+        }
+    }
+}
+
+/// Where a slot lives.
+#[derive(Clone, Debug, PartialEq)]
+pub enum SlotKind {
+    /// A local variable (also: copies of inlined function parameters, and temporaries).
+    Local,
+    /// Shader instance parameter number `.0` (index into [`Module::params`]).
+    Param(u32),
+    /// An RSL global.
+    Global(Global),
+}
+
+/// A variable.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Slot {
+    /// Source name (made unique by lowering when shadowed, e.g. `x.1`).
+    pub name: String,
+    /// Type; the detail is the declared one and is refined by the uniform analysis.
+    pub ty: Type,
+    /// Local, parameter or global.
+    pub kind: SlotKind,
+    /// Declaration site.
+    pub span: Span,
+}
+
+/// Unary ops.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum UnOp {
+    /// Negation, per component.
+    Neg,
+    /// Logical not (of a boolean).
+    Not,
+}
+
+/// Binary ops; operand types are the argument values' types (`mul(float, vector)`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum BinOp {
+    /// `+` (component-wise; float operands are promoted).
+    Add,
+    /// `-`
+    Sub,
+    /// `*` (component-wise for triples; matrix × matrix is the matrix product)
+    Mul,
+    /// `/` (matrix / matrix multiplies by the inverse)
+    Div,
+    /// `.` dot product → float
+    Dot,
+    /// `^` cross product → vector
+    Cross,
+    /// `==` → bool
+    Eq,
+    /// `!=` → bool
+    Ne,
+    /// `<` → bool (floats only)
+    Lt,
+    /// `<=`
+    Le,
+    /// `>`
+    Gt,
+    /// `>=`
+    Ge,
+    /// `&&` of booleans (both sides evaluated: RSL relations have no side effects)
+    And,
+    /// `||`
+    Or,
+}
+
+impl BinOp {
+    /// Short name used in the printer and in target-library function names (`ar_mul_fv`).
+    #[must_use]
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::Add => "add",
+            Self::Sub => "sub",
+            Self::Mul => "mul",
+            Self::Div => "div",
+            Self::Dot => "dot",
+            Self::Cross => "cross",
+            Self::Eq => "eq",
+            Self::Ne => "ne",
+            Self::Lt => "lt",
+            Self::Le => "le",
+            Self::Gt => "gt",
+            Self::Ge => "ge",
+            Self::And => "and",
+            Self::Or => "or",
+        }
+    }
+}
+
+/// An abstract operation.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Op {
+    /// A constant (uniform).
+    Const(Const),
+    /// Reads a slot (whole value; for arrays the whole array, only as an argument to a call or
+    /// store).
+    Load(SlotId),
+    /// Reads element `args[0]` (a float, truncated and clamped to the bounds) of an array slot.
+    LoadElem(SlotId),
+    /// Unary op on `args[0]`.
+    Unary(UnOp),
+    /// Binary op on `args[0]`, `args[1]`.
+    Binary(BinOp),
+    /// `args[0] ? args[1] : args[2]` per lane (`args[0]` is a bool).
+    Select,
+    /// Converts `args[0]` to the instruction's type: float → triple (all components), float →
+    /// matrix (diagonal), triple → another triple kind (no transformation). Also float → bool
+    /// (`!= 0`) for conditions.
+    Convert,
+    /// Builds a triple of the instruction's type from three floats.
+    MakeTriple,
+    /// Builds a matrix from 16 floats.
+    MakeMatrix,
+    /// Transforms `args[1]` (a triple or matrix) *from* the named space `args[0]` (a string) to
+    /// `current`, as a point, vector or normal according to the instruction's type, or converts
+    /// a colour *from* the named colour space to RGB: the semantics of `point "world" (…)` and
+    /// `color "hsv" (…)`.
+    FromSpace,
+    /// A built-in function: `name` resolved to overload `overload` of [`crate::builtins`];
+    /// output arguments are slots in `outputs`, written by the call.
+    Call {
+        /// The built-in's name.
+        name: String,
+        /// Index of the overload in the built-in table.
+        overload: u32,
+        /// Slots receiving output arguments, in argument order (`None` for inputs).
+        outputs: Vec<Option<SlotId>>,
+    },
+}
+
+/// One instruction: an op, its arguments and its result type.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Inst {
+    /// The op.
+    pub op: Op,
+    /// Argument values.
+    pub args: Vec<Value>,
+    /// Result type. `detail` is set by the uniform/varying analysis. Booleans (relations) are
+    /// typed `float` with [`Inst::is_bool`] set.
+    pub ty: Type,
+    /// The result is a boolean (a relation or logical op).
+    pub is_bool: bool,
+    /// Set by the derivative-activity analysis: derivatives of this value are needed.
+    pub needs_derivs: bool,
+    /// Source.
+    pub span: Span,
+}
+
+/// A statement of the structured body.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Node {
+    /// Computes instruction `.0` here.
+    Inst(Value),
+    /// `slot[index] = value` (index for array slots only). Under divergent control flow only
+    /// the active lanes are written.
+    Store {
+        /// The variable.
+        slot: SlotId,
+        /// Array element index (a float value).
+        index: Option<Value>,
+        /// The new value.
+        value: Value,
+    },
+    /// Two-way branch on a boolean value.
+    If {
+        /// Condition (a bool).
+        cond: Value,
+        /// Taken when true.
+        then: Block,
+        /// Taken when false.
+        otherwise: Block,
+    },
+    /// `while`/`for`: `loop { header; if !cond break; body; step }`.
+    Loop {
+        /// Computes the condition each iteration.
+        header: Block,
+        /// The condition (defined in `header`); `None` loops until a `break`.
+        cond: Option<Value>,
+        /// The body.
+        body: Block,
+        /// The `for` step (where `continue` goes).
+        step: Block,
+    },
+    /// Leaves the `.0 + 1`-th enclosing loop (0 = innermost) — RSL `break n` is `Break(n - 1)`.
+    Break(u32),
+    /// Continues the `.0 + 1`-th enclosing loop.
+    Continue(u32),
+    /// Returns from the innermost [`Node::Frame`] (an inlined function) or the shader.
+    Return,
+    /// The body of an inlined function call: a `Return` inside ends it for the returning lanes.
+    /// Loop levels do not cross frames.
+    Frame(Block),
+    /// `illuminance([category,] P [, axis, angle]) body`: runs `body` per light with the
+    /// `L` and `Cl` global slots set and only the lanes the light reaches active.
+    Illuminance {
+        /// Category string value.
+        category: Option<Value>,
+        /// Surface position.
+        position: Value,
+        /// Cone axis and half-angle.
+        cone: Option<(Value, Value)>,
+        /// The body.
+        body: Block,
+    },
+    /// `illuminate(P [, axis, angle]) body` in a light shader: sets `L = Ps - P` and runs the
+    /// body for the lanes inside the cone; `Cl` stays zero for the others.
+    Illuminate {
+        /// Light position.
+        position: Value,
+        /// Cone.
+        cone: Option<(Value, Value)>,
+        /// Body.
+        body: Block,
+    },
+    /// `solar([axis, angle]) body`: a directional light; sets `L = axis`.
+    Solar {
+        /// Direction and half-angle.
+        cone: Option<(Value, Value)>,
+        /// Body.
+        body: Block,
+    },
+}
+
+/// A sequence of nodes.
+pub type Block = Vec<Node>;
+
+/// The shader kinds the IR knows.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum ShaderKind {
+    /// Surface.
+    Surface,
+    /// Light.
+    Light,
+    /// Displacement.
+    Displacement,
+    /// Volume.
+    Volume,
+    /// Imager.
+    Imager,
+}
+
+/// A shader parameter with its metadata.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ParamMeta {
+    /// Name.
+    pub name: String,
+    /// Type (detail as declared: parameters are uniform unless declared varying).
+    pub ty: Type,
+    /// The default, evaluated to a constant at compile time.
+    pub default: Const,
+    /// `output` parameter.
+    pub output: bool,
+    /// The slot holding it in [`Function::slots`].
+    pub slot: SlotId,
+    /// Declaration.
+    pub span: Span,
+}
+
+/// The shader's code.
+#[derive(Clone, Debug, PartialEq, Default)]
+pub struct Function {
+    /// Instructions (SSA values).
+    pub insts: Vec<Inst>,
+    /// Variables.
+    pub slots: Vec<Slot>,
+    /// The body.
+    pub body: Block,
+}
+
+impl Function {
+    /// The instruction defining `v`.
+    #[must_use]
+    pub fn inst(&self, v: Value) -> &Inst {
+        &self.insts[v.0 as usize]
+    }
+
+    /// The slot `s`.
+    #[must_use]
+    pub fn slot(&self, s: SlotId) -> &Slot {
+        &self.slots[s.0 as usize]
+    }
+
+    /// The slot holding global `g`, if the shader touches it.
+    #[must_use]
+    pub fn global_slot(&self, g: Global) -> Option<SlotId> {
+        self.slots.iter().position(|s| s.kind == SlotKind::Global(g)).map(|i| SlotId(i as u32))
+    }
+}
+
+/// One compiled shader.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Module {
+    /// Surface, light, ….
+    pub kind: ShaderKind,
+    /// The shader's name.
+    pub name: String,
+    /// Instance parameters in declaration order.
+    pub params: Vec<ParamMeta>,
+    /// The code.
+    pub func: Function,
+}
+
+impl Detail {
+    /// `varying` if either is.
+    #[must_use]
+    pub fn join(self, other: Detail) -> Detail {
+        self.max(other)
+    }
+}
