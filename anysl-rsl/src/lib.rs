@@ -10,5 +10,6 @@ pub use anysl_core as core;
 pub mod diag;
 pub mod front;
 pub mod ir;
+pub mod passes;
 pub mod span;
 pub mod types;

@@ -470,3 +470,152 @@ impl Detail {
         self.max(other)
     }
 }
+
+impl Node {
+    /// The values this node reads directly (not those of nested blocks).
+    pub fn operands(&self, mut f: impl FnMut(Value)) {
+        match self {
+            Node::Inst(_) | Node::Break(_) | Node::Continue(_) | Node::Return | Node::Frame(_) => {}
+            Node::Store { index, value, .. } => {
+                if let Some(i) = index {
+                    f(*i);
+                }
+                f(*value);
+            }
+            Node::If { cond, .. } => f(*cond),
+            Node::Loop { cond, .. } => {
+                if let Some(c) = cond {
+                    f(*c);
+                }
+            }
+            Node::Illuminance { category, position, cone, .. } => {
+                if let Some(c) = category {
+                    f(*c);
+                }
+                f(*position);
+                if let Some((a, b)) = cone {
+                    f(*a);
+                    f(*b);
+                }
+            }
+            Node::Illuminate { position, cone, .. } => {
+                f(*position);
+                if let Some((a, b)) = cone {
+                    f(*a);
+                    f(*b);
+                }
+            }
+            Node::Solar { cone, .. } => {
+                if let Some((a, b)) = cone {
+                    f(*a);
+                    f(*b);
+                }
+            }
+        }
+    }
+
+    /// The nested blocks of this node, in execution order.
+    #[must_use]
+    pub fn blocks(&self) -> Vec<&Block> {
+        match self {
+            Node::If { then, otherwise, .. } => vec![then, otherwise],
+            Node::Loop { header, body, step, .. } => vec![header, body, step],
+            Node::Frame(b) => vec![b],
+            Node::Illuminance { body, .. } | Node::Illuminate { body, .. } | Node::Solar { body, .. } => vec![body],
+            _ => Vec::new(),
+        }
+    }
+
+    /// The nested blocks, mutably.
+    pub fn blocks_mut(&mut self) -> Vec<&mut Block> {
+        match self {
+            Node::If { then, otherwise, .. } => vec![then, otherwise],
+            Node::Loop { header, body, step, .. } => vec![header, body, step],
+            Node::Frame(b) => vec![b],
+            Node::Illuminance { body, .. } | Node::Illuminate { body, .. } | Node::Solar { body, .. } => vec![body],
+            _ => Vec::new(),
+        }
+    }
+}
+
+/// Calls `f` on every node of `block` and its nested blocks, parents before children.
+pub fn walk(block: &Block, f: &mut impl FnMut(&Node)) {
+    for n in block {
+        f(n);
+        for b in n.blocks() {
+            walk(b, f);
+        }
+    }
+}
+
+impl Function {
+    /// How many times each value is used (by instructions placed in the body and by nodes).
+    #[must_use]
+    pub fn use_counts(&self) -> Vec<u32> {
+        let mut uses = vec![0u32; self.insts.len()];
+        walk(&self.body, &mut |n| {
+            if let Node::Inst(v) = n {
+                for a in &self.inst(*v).args {
+                    uses[a.0 as usize] += 1;
+                }
+            }
+            n.operands(|v| uses[v.0 as usize] += 1);
+        });
+        uses
+    }
+
+    /// Number of instructions placed in the body (the figure passes report).
+    #[must_use]
+    pub fn inst_count(&self) -> usize {
+        let mut n = 0;
+        walk(&self.body, &mut |node| {
+            if matches!(node, Node::Inst(_)) {
+                n += 1;
+            }
+        });
+        n
+    }
+
+    /// Adds an instruction to the arena (not yet placed in the body).
+    pub fn add_inst(&mut self, inst: Inst) -> Value {
+        self.insts.push(inst);
+        Value(self.insts.len() as u32 - 1)
+    }
+}
+
+impl Op {
+    /// True when the op has no effect besides its value, so it may be removed when unused.
+    #[must_use]
+    pub fn is_removable(&self) -> bool {
+        match self {
+            Op::Call { name, outputs, .. } => outputs.iter().all(Option::is_none) && name != "printf",
+            _ => true,
+        }
+    }
+
+    /// True when the value depends on its arguments only, so it may be folded when they are
+    /// constant (and computed once for uniform arguments).
+    #[must_use]
+    pub fn is_pure(&self) -> bool {
+        match self {
+            Op::Call { name, outputs, .. } => {
+                outputs.iter().all(Option::is_none) && !CONTEXT_BUILTINS.contains(&name.as_str())
+            }
+            Op::Load(_) | Op::LoadElem(_) => false,
+            _ => true,
+        }
+    }
+}
+
+/// Built-ins whose result depends on more than their arguments (the renderer, the lights, the
+/// derivatives of the arguments, a random stream, or a side effect): never folded.
+pub const CONTEXT_BUILTINS: &[&str] = &[
+    "printf", "random", "trace", "texture", "environment", "shadow", "ambient", "diffuse", "specular",
+    "specularbrdf", "phong", "atmosphere", "displacement", "lightsource", "surface", "incident", "opposite",
+    "attribute", "option", "rendererinfo", "textureinfo", "depth", "Du", "Dv", "Deriv", "area", "calculatenormal",
+    "filterwidth", "filterstep", "shadername", "transform", "vtransform", "ntransform", "ctransform",
+];
+
+/// Built-ins that need the derivatives of (some of) their arguments.
+pub const DERIVATIVE_BUILTINS: &[&str] =
+    &["Du", "Dv", "Deriv", "area", "calculatenormal", "filterwidth", "filterstep", "texture", "environment", "shadow"];

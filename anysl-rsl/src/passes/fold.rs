@@ -1,0 +1,354 @@
+//! Parameter specialization and constant folding.
+
+use crate::ir::{BinOp, Block, Const, Function, Inst, Module, Node, Op, SlotKind, UnOp, Value};
+use crate::types::{BaseType, Detail};
+
+/// Replaces reads of uniform, non-output parameters that the shader never assigns by constants:
+/// the value given in `values`, or the default when `use_defaults` is set.
+pub fn specialize(module: &mut Module, values: &[(String, Const)], use_defaults: bool) {
+    let func = &mut module.func;
+    let mut stored = vec![false; func.slots.len()];
+    crate::ir::walk(&func.body, &mut |n| {
+        if let Node::Store { slot, .. } = n {
+            stored[slot.0 as usize] = true;
+        }
+    });
+    for p in &module.params {
+        if p.output || p.ty.detail != Detail::Uniform || stored[p.slot.0 as usize] {
+            continue;
+        }
+        let value = match values.iter().find(|(n, _)| *n == p.name) {
+            Some((_, v)) => v.clone(),
+            None if use_defaults => p.default.clone(),
+            None => continue,
+        };
+        for inst in &mut func.insts {
+            match &inst.op {
+                Op::Load(s) if *s == p.slot => inst.op = Op::Const(value.clone()),
+                Op::LoadElem(s) if *s == p.slot => {
+                    // Leave indexed reads of a specialized array to folding: make the array a
+                    // constant and index it there.
+                    let _ = s;
+                }
+                _ => {}
+            }
+        }
+    }
+    let _ = SlotKind::Local;
+}
+
+/// Folds instructions whose arguments are constants, forwards selects on constant conditions,
+/// and removes branches and loops decided at compile time.
+pub fn fold_constants(func: &mut Function) {
+    let mut fwd: Vec<Option<Value>> = vec![None; func.insts.len()];
+    let body = std::mem::take(&mut func.body);
+    func.body = fold_block(func, body, &mut fwd);
+    // Rewrite forwarded uses.
+    let resolve = |fwd: &[Option<Value>], mut v: Value| {
+        while let Some(n) = fwd[v.0 as usize] {
+            v = n;
+        }
+        v
+    };
+    for i in 0..func.insts.len() {
+        let args: Vec<Value> = func.insts[i].args.iter().map(|&a| resolve(&fwd, a)).collect();
+        func.insts[i].args = args;
+    }
+    rewrite_operands(&mut func.body, &|v| resolve(&fwd, v));
+}
+
+/// Applies `map` to every value operand of the nodes in `block` (recursively).
+pub fn rewrite_operands(block: &mut Block, map: &impl Fn(Value) -> Value) {
+    for n in block.iter_mut() {
+        match n {
+            Node::Store { index, value, .. } => {
+                if let Some(i) = index {
+                    *i = map(*i);
+                }
+                *value = map(*value);
+            }
+            Node::If { cond, .. } => *cond = map(*cond),
+            Node::Loop { cond: Some(c), .. } => *c = map(*c),
+            Node::Illuminance { category, position, cone, .. } => {
+                if let Some(c) = category {
+                    *c = map(*c);
+                }
+                *position = map(*position);
+                if let Some((a, b)) = cone {
+                    *a = map(*a);
+                    *b = map(*b);
+                }
+            }
+            Node::Illuminate { position, cone, .. } => {
+                *position = map(*position);
+                if let Some((a, b)) = cone {
+                    *a = map(*a);
+                    *b = map(*b);
+                }
+            }
+            Node::Solar { cone: Some((a, b)), .. } => {
+                *a = map(*a);
+                *b = map(*b);
+            }
+            _ => {}
+        }
+        for b in n.blocks_mut() {
+            rewrite_operands(b, map);
+        }
+    }
+}
+
+fn const_of(func: &Function, fwd: &[Option<Value>], v: Value) -> Option<Const> {
+    let mut v = v;
+    while let Some(n) = fwd[v.0 as usize] {
+        v = n;
+    }
+    match &func.inst(v).op {
+        Op::Const(c) => Some(c.clone()),
+        _ => None,
+    }
+}
+
+fn fold_block(func: &mut Function, block: Block, fwd: &mut Vec<Option<Value>>) -> Block {
+    let mut out = Vec::with_capacity(block.len());
+    for node in block {
+        match node {
+            Node::Inst(v) => {
+                fold_inst(func, fwd, v);
+                out.push(Node::Inst(v));
+            }
+            Node::If { cond, then, otherwise } => {
+                let then = fold_block(func, then, fwd);
+                let otherwise = fold_block(func, otherwise, fwd);
+                match const_of(func, fwd, cond) {
+                    Some(Const::Float(c)) => out.extend(if c != 0.0 { then } else { otherwise }),
+                    _ => out.push(Node::If { cond, then, otherwise }),
+                }
+            }
+            Node::Loop { header, cond, body, step } => {
+                let header = fold_block(func, header, fwd);
+                let never = matches!(cond.and_then(|c| const_of(func, fwd, c)), Some(Const::Float(c)) if c == 0.0);
+                if never {
+                    out.extend(header);
+                } else {
+                    let body = fold_block(func, body, fwd);
+                    let step = fold_block(func, step, fwd);
+                    out.push(Node::Loop { header, cond, body, step });
+                }
+            }
+            mut other => {
+                for b in other.blocks_mut() {
+                    let taken = std::mem::take(b);
+                    *b = fold_block(func, taken, fwd);
+                }
+                out.push(other);
+            }
+        }
+    }
+    out
+}
+
+fn fold_inst(func: &mut Function, fwd: &mut [Option<Value>], v: Value) {
+    let inst = func.inst(v).clone();
+    if let Op::Select = inst.op {
+        if let Some(Const::Float(c)) = const_of(func, fwd, inst.args[0]) {
+            let pick = if c != 0.0 { inst.args[1] } else { inst.args[2] };
+            // Forward only when the types agree exactly (no implicit conversion hidden in the
+            // select).
+            if func.inst(pick).ty.base == inst.ty.base && func.inst(pick).is_bool == inst.is_bool {
+                fwd[v.0 as usize] = Some(pick);
+            }
+            return;
+        }
+    }
+    if !inst.op.is_pure() || matches!(inst.op, Op::Const(_)) {
+        return;
+    }
+    let args: Option<Vec<Const>> = inst.args.iter().map(|&a| const_of(func, fwd, a)).collect();
+    let Some(args) = args else { return };
+    if let Some(c) = eval(&inst, &args) {
+        func.insts[v.0 as usize].op = Op::Const(c);
+        func.insts[v.0 as usize].args.clear();
+    }
+}
+
+fn comps(c: &Const) -> Option<Vec<f64>> {
+    match c {
+        Const::Float(x) => Some(vec![*x]),
+        Const::Triple(t) => Some(t.to_vec()),
+        Const::Matrix(m) => Some(m.to_vec()),
+        _ => None,
+    }
+}
+
+fn from_comps(base: BaseType, v: &[f64]) -> Option<Const> {
+    match (base, v.len()) {
+        (BaseType::Float, 1) => Some(Const::Float(v[0])),
+        (b, 3) if b.is_triple() => Some(Const::Triple([v[0], v[1], v[2]])),
+        (BaseType::Matrix, 16) => {
+            let mut m = [0.0; 16];
+            m.copy_from_slice(v);
+            Some(Const::Matrix(m))
+        }
+        _ => None,
+    }
+}
+
+fn bool_c(b: bool) -> Const {
+    Const::Float(if b { 1.0 } else { 0.0 })
+}
+
+fn mat_mul(a: &[f64], b: &[f64]) -> Vec<f64> {
+    let mut r = vec![0.0; 16];
+    for i in 0..4 {
+        for j in 0..4 {
+            r[i * 4 + j] = (0..4).map(|k| a[i * 4 + k] * b[k * 4 + j]).sum();
+        }
+    }
+    r
+}
+
+/// Evaluates a pure instruction on constant arguments in f64; `None` when it cannot (the
+/// instruction then stays for run time).
+fn eval(inst: &Inst, args: &[Const]) -> Option<Const> {
+    let base = inst.ty.base;
+    match &inst.op {
+        Op::Unary(UnOp::Neg) => {
+            let a = comps(&args[0])?;
+            from_comps(base, &a.iter().map(|x| -x).collect::<Vec<_>>())
+        }
+        Op::Unary(UnOp::Not) => Some(bool_c(comps(&args[0])?[0] == 0.0)),
+        Op::Binary(op) => {
+            if let (Const::Str(a), Const::Str(b)) = (&args[0], &args[1]) {
+                return match op {
+                    BinOp::Eq => Some(bool_c(a == b)),
+                    BinOp::Ne => Some(bool_c(a != b)),
+                    _ => None,
+                };
+            }
+            let a = comps(&args[0])?;
+            let b = comps(&args[1])?;
+            match op {
+                BinOp::Dot if a.len() == 3 && b.len() == 3 => {
+                    Some(Const::Float(a[0] * b[0] + a[1] * b[1] + a[2] * b[2]))
+                }
+                BinOp::Cross if a.len() == 3 && b.len() == 3 => Some(Const::Triple([
+                    a[1] * b[2] - a[2] * b[1],
+                    a[2] * b[0] - a[0] * b[2],
+                    a[0] * b[1] - a[1] * b[0],
+                ])),
+                BinOp::Mul if a.len() == 16 && b.len() == 16 => from_comps(base, &mat_mul(&a, &b)),
+                BinOp::And => Some(bool_c(a[0] != 0.0 && b[0] != 0.0)),
+                BinOp::Or => Some(bool_c(a[0] != 0.0 || b[0] != 0.0)),
+                BinOp::Eq => Some(bool_c(a == b)),
+                BinOp::Ne => Some(bool_c(a != b)),
+                BinOp::Lt => Some(bool_c(a[0] < b[0])),
+                BinOp::Le => Some(bool_c(a[0] <= b[0])),
+                BinOp::Gt => Some(bool_c(a[0] > b[0])),
+                BinOp::Ge => Some(bool_c(a[0] >= b[0])),
+                BinOp::Add | BinOp::Sub | BinOp::Mul | BinOp::Div if a.len() != 16 && b.len() != 16 => {
+                    let n = a.len().max(b.len());
+                    let get = |v: &[f64], i: usize| if v.len() == 1 { v[0] } else { v[i] };
+                    let r: Vec<f64> = (0..n)
+                        .map(|i| {
+                            let (x, y) = (get(&a, i), get(&b, i));
+                            match op {
+                                BinOp::Add => x + y,
+                                BinOp::Sub => x - y,
+                                BinOp::Mul => x * y,
+                                _ => x / y,
+                            }
+                        })
+                        .collect();
+                    from_comps(base, &r)
+                }
+                _ => None,
+            }
+        }
+        Op::Convert => {
+            if inst.is_bool {
+                return Some(bool_c(comps(&args[0])?.iter().any(|&x| x != 0.0)));
+            }
+            let a = comps(&args[0])?;
+            match (base, a.len()) {
+                (b, 1) if b.is_triple() => Some(Const::Triple([a[0]; 3])),
+                (BaseType::Matrix, 1) => {
+                    let mut m = [0.0; 16];
+                    for i in 0..4 {
+                        m[i * 5] = a[0];
+                    }
+                    Some(Const::Matrix(m))
+                }
+                _ => from_comps(base, &a),
+            }
+        }
+        Op::MakeTriple | Op::MakeMatrix => {
+            let v: Option<Vec<f64>> = args.iter().map(|c| comps(c).map(|v| v[0])).collect();
+            from_comps(base, &v?)
+        }
+        Op::Call { name, .. } => eval_builtin(name, base, args),
+        _ => None,
+    }
+}
+
+/// The pure math built-ins folded at compile time, on floats and component-wise on triples.
+fn eval_builtin(name: &str, base: BaseType, args: &[Const]) -> Option<Const> {
+    let a: Option<Vec<Vec<f64>>> = args.iter().map(comps).collect();
+    let a = a?;
+    let f1 = |f: fn(f64) -> f64| -> Option<Const> {
+        if a.len() != 1 {
+            return None;
+        }
+        from_comps(base, &a[0].iter().map(|&x| f(x)).collect::<Vec<_>>())
+    };
+    let scalar = |i: usize| a.get(i).and_then(|v| if v.len() == 1 { Some(v[0]) } else { None });
+    match name {
+        "radians" => f1(f64::to_radians),
+        "degrees" => f1(f64::to_degrees),
+        "sin" => f1(f64::sin),
+        "cos" => f1(f64::cos),
+        "tan" => f1(f64::tan),
+        "asin" => f1(f64::asin),
+        "acos" => f1(f64::acos),
+        "atan" if a.len() == 1 => f1(f64::atan),
+        "atan" if a.len() == 2 => Some(Const::Float(scalar(0)?.atan2(scalar(1)?))),
+        "exp" => f1(f64::exp),
+        "sqrt" => f1(f64::sqrt),
+        "inversesqrt" => f1(|x| 1.0 / x.sqrt()),
+        "log" if a.len() == 1 => f1(f64::ln),
+        "log" if a.len() == 2 => Some(Const::Float(scalar(0)?.ln() / scalar(1)?.ln())),
+        "abs" => f1(f64::abs),
+        "floor" => f1(f64::floor),
+        "ceil" => f1(f64::ceil),
+        "round" => f1(f64::round),
+        "sign" => f1(|x| if x > 0.0 { 1.0 } else if x < 0.0 { -1.0 } else { 0.0 }),
+        "pow" => Some(Const::Float(scalar(0)?.powf(scalar(1)?))),
+        "mod" => {
+            let (x, y) = (scalar(0)?, scalar(1)?);
+            Some(Const::Float(x - y * (x / y).floor()))
+        }
+        "min" if a.len() == 2 && a[0].len() == a[1].len() => {
+            from_comps(base, &a[0].iter().zip(&a[1]).map(|(x, y)| x.min(*y)).collect::<Vec<_>>())
+        }
+        "max" if a.len() == 2 && a[0].len() == a[1].len() => {
+            from_comps(base, &a[0].iter().zip(&a[1]).map(|(x, y)| x.max(*y)).collect::<Vec<_>>())
+        }
+        "clamp" => {
+            let (x, lo, hi) = (scalar(0)?, scalar(1)?, scalar(2)?);
+            Some(Const::Float(x.max(lo).min(hi)))
+        }
+        "step" => Some(Const::Float(if scalar(1)? < scalar(0)? { 0.0 } else { 1.0 })),
+        "length" if a.len() == 1 && a[0].len() == 3 => {
+            Some(Const::Float(a[0].iter().map(|x| x * x).sum::<f64>().sqrt()))
+        }
+        _ => None,
+    }
+}
+
+impl Const {
+    /// The const of type `float` holding `x`.
+    #[must_use]
+    pub fn float(x: f64) -> Self {
+        Const::Float(x)
+    }
+}

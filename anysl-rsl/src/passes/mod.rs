@@ -1,0 +1,60 @@
+//! IR passes: specialization of uniform parameters with constant folding, dead-code
+//! elimination, uniform/varying analysis and derivative-activity analysis.
+//!
+//! [`optimize`] runs them in that order and reports the instruction count after each stage.
+
+pub mod analysis;
+pub mod dce;
+pub mod fold;
+
+use crate::ir::{Const, Module};
+
+/// Which passes [`optimize`] runs.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PassOptions {
+    /// Replace reads of uniform parameters by these values (name, value); parameters not
+    /// listed keep their run-time value unless `specialize_defaults` is set.
+    pub specialize: Vec<(String, Const)>,
+    /// Also treat every unlisted uniform parameter as its default (a fixed instance).
+    pub specialize_defaults: bool,
+    /// Fold constants (also folds away branches on constants).
+    pub fold: bool,
+    /// Remove dead code.
+    pub dce: bool,
+}
+
+impl Default for PassOptions {
+    fn default() -> Self {
+        Self { specialize: Vec::new(), specialize_defaults: false, fold: true, dce: true }
+    }
+}
+
+/// Instruction counts after each stage.
+#[derive(Clone, Debug, PartialEq, Default)]
+pub struct PassReport {
+    /// `(stage, instructions placed in the body)`, starting with `("lowered", n)`.
+    pub stages: Vec<(&'static str, usize)>,
+    /// True when some value needs derivatives (the shader must run on dual numbers).
+    pub uses_derivatives: bool,
+}
+
+/// Runs the passes and the analyses (the analyses always run: back ends rely on them).
+pub fn optimize(module: &mut Module, opts: &PassOptions) -> PassReport {
+    let mut report = PassReport::default();
+    report.stages.push(("lowered", module.func.inst_count()));
+    if !opts.specialize.is_empty() || opts.specialize_defaults {
+        fold::specialize(module, &opts.specialize, opts.specialize_defaults);
+        report.stages.push(("specialized", module.func.inst_count()));
+    }
+    if opts.fold {
+        fold::fold_constants(&mut module.func);
+        report.stages.push(("folded", module.func.inst_count()));
+    }
+    if opts.dce {
+        dce::eliminate_dead_code(module);
+        report.stages.push(("dce", module.func.inst_count()));
+    }
+    analysis::analyze_uniform(&mut module.func);
+    report.uses_derivatives = analysis::analyze_derivatives(&mut module.func);
+    report
+}
