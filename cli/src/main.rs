@@ -5,6 +5,7 @@ mod kernels;
 mod native;
 mod render;
 mod table1;
+mod workload;
 
 use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
@@ -75,6 +76,26 @@ enum BenchCommand {
         #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u32).range(1..=1000))]
         runs: u32,
     },
+    /// The shared shading workload (`shaders/assets/workload_ref/shading_workload.md`): four
+    /// shaders on a 512×512 sphere image per system and thread count, as the document's TSV,
+    /// with max abs error against its reference arrays.
+    Workload {
+        /// Worker threads per shading call (repeatable; default: 1 and 2).
+        #[arg(long = "threads", value_parser = clap::value_parser!(u32).range(1..=256))]
+        threads: Vec<u32>,
+        /// Also write the rows (with pixels off by more than 1e-3) as JSON to this file.
+        #[arg(long)]
+        json: Option<PathBuf>,
+        /// Timed calls per row after the first (the median is reported).
+        #[arg(long, default_value_t = 21, value_parser = clap::value_parser!(u32).range(1..=1000))]
+        runs: u32,
+        /// Only these shaders (repeatable: plastic, checker, wood, granite).
+        #[arg(long = "shader")]
+        shaders: Vec<String>,
+        /// Only these systems (repeatable, e.g. anysl-f32x8).
+        #[arg(long = "system")]
+        systems: Vec<String>,
+    },
 }
 
 fn progress_bar(show: bool) -> ProgressBar {
@@ -126,6 +147,19 @@ fn bench_table1(opts: &table1::Table1Opts, json: Option<PathBuf>) -> Result<(), 
     Ok(())
 }
 
+fn bench_workload(opts: &workload::WorkloadOpts, json: Option<PathBuf>) -> Result<(), String> {
+    let pb = progress_bar(std::io::IsTerminal::is_terminal(&std::io::stderr()));
+    let rows = workload::run(opts, &pb)?;
+    pb.finish_and_clear();
+    workload::print_tsv(&rows);
+    if let Some(path) = json {
+        let text = serde_json::to_string_pretty(&rows).map_err(|e| e.to_string())?;
+        std::fs::write(&path, text).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+        eprintln!("rows written to {}", path.display());
+    }
+    Ok(())
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
@@ -157,6 +191,25 @@ fn main() -> ExitCode {
                     size,
                     runs: runs as usize,
                     threads: threads.map_or(0, |t| t as usize),
+                },
+                json,
+            ),
+            BenchCommand::Workload {
+                threads,
+                json,
+                runs,
+                shaders,
+                systems,
+            } => bench_workload(
+                &workload::WorkloadOpts {
+                    threads: if threads.is_empty() {
+                        vec![1, 2]
+                    } else {
+                        threads.iter().map(|&t| t as usize).collect()
+                    },
+                    runs: runs as usize,
+                    shaders,
+                    systems,
                 },
                 json,
             ),

@@ -7,7 +7,8 @@
 //! Shaders read only [`anysl_core::Globals`] and call the RSL standard library; they never
 //! name a renderer. [`Surface`] and [`Light`] dispatch over the closed set by name, and
 //! [`native`] holds hand-written SIMD versions of plastic and checker that measure what the
-//! generic layer costs.
+//! generic layer costs. [`workload`] is the shared shading workload (its scene, its four
+//! shaders and reference images) that shading systems are compared on.
 //!
 //! ```
 //! use anysl_core::{Exec, Globals, PointContext, SurfaceShader};
@@ -34,6 +35,7 @@ pub mod dispatch;
 pub mod lights;
 pub mod native;
 pub mod surfaces;
+pub mod workload;
 
 pub use dispatch::{table1_lights, Light, Surface, TABLE1_AMBIENT};
 pub use lights::{AmbientLight, DistantLight, PointLight, SpotLight};

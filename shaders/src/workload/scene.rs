@@ -1,0 +1,332 @@
+//! The workload's scene setup (§1–2): a 512×512 pinhole camera looking at the unit sphere,
+//! intersected in f64, and the hit points as shading inputs in structure-of-arrays form.
+
+use anysl_core::prelude::*;
+use anysl_core::{PointContext, SurfaceVisitor};
+
+use super::WorkloadShader;
+use crate::Light;
+
+/// Image side in pixels.
+pub const SIZE: usize = 512;
+/// Camera position.
+const EYE: [f64; 3] = [0.0, 0.0, 3.0];
+/// Half-extent of the image plane at distance 1.
+const HALF_EXTENT: f64 = 0.375;
+/// Inputs are padded to a multiple of this many points, so every SIMD width divides them.
+pub const PAD: usize = 16;
+
+/// Input arrays of [`WorkloadScene`] (each `x, y, z`).
+const P: usize = 0;
+const N: usize = 3;
+const V: usize = 6;
+/// Screen-space derivative seeds (f32 only): ∂P/∂x, ∂P/∂y, ∂N/∂x, ∂N/∂y.
+const DPDX: usize = 9;
+const DPDY: usize = 12;
+const DNDX: usize = 15;
+const DNDY: usize = 18;
+const F32_FIELDS: usize = 21;
+const F64_FIELDS: usize = 9;
+
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn normalize(v: [f64; 3]) -> [f64; 3] {
+    let l = dot(v, v).sqrt();
+    v.map(|c| c / l)
+}
+
+/// The primary ray direction through the centre of pixel `(row, col)` (§1; fractional and
+/// out-of-image pixels give the neighbouring rays of the footprint).
+fn ray_dir(row: f64, col: f64) -> [f64; 3] {
+    let step = 2.0 / SIZE as f64;
+    let sx = ((col + 0.5) * step - 1.0) * HALF_EXTENT;
+    let sy = (1.0 - (row + 0.5) * step) * HALF_EXTENT;
+    normalize([sx, sy, -1.0])
+}
+
+/// §2: the hit point of the ray `(EYE, d)` on the unit sphere, in the numerically stable form.
+fn intersect(d: [f64; 3]) -> Option<[f64; 3]> {
+    let b = dot(EYE, d);
+    let q = [EYE[0] - b * d[0], EYE[1] - b * d[1], EYE[2] - b * d[2]];
+    let h = 1.0 - dot(q, q);
+    if h > 0.0 {
+        let t = -b - h.sqrt();
+        Some([EYE[0] + t * d[0], EYE[1] + t * d[1], EYE[2] + t * d[2]])
+    } else {
+        None
+    }
+}
+
+/// The shading inputs of the workload: P, N, V of every hit pixel in row-major pixel order,
+/// computed in f64 (§2) and kept both in f64 (for f64 instantiations) and rounded to f32 (for
+/// everything else), padded to a multiple of [`PAD`] points by repeating the last hit.
+///
+/// Each hit also carries a pixel footprint for dual-number instantiations: ∂P/∂x and ∂P/∂y
+/// per pixel step (the neighbouring rays meeting the tangent plane at P) and the matching
+/// ∂N (the unit sphere's normal is P). Other instantiations ignore them.
+#[derive(Clone, Debug)]
+pub struct WorkloadScene {
+    n_hit: usize,
+    pixels: Vec<u32>,
+    f32s: Vec<Vec<f32>>,
+    f64s: Vec<Vec<f64>>,
+}
+
+impl Default for WorkloadScene {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl WorkloadScene {
+    /// Camera, rays and intersections (not part of a timed call).
+    #[must_use]
+    pub fn new() -> Self {
+        let mut pixels = Vec::new();
+        let mut f64s = vec![Vec::new(); F64_FIELDS];
+        let mut f32s = vec![Vec::new(); F32_FIELDS];
+        for row in 0..SIZE {
+            for col in 0..SIZE {
+                let d = ray_dir(row as f64, col as f64);
+                let Some(p) = intersect(d) else { continue };
+                let n = normalize(p);
+                let v = d.map(|c| -c);
+                // Footprint: the rays one pixel right / down, met in the tangent plane at P.
+                let transfer = |d2: [f64; 3]| {
+                    let t = dot([p[0] - EYE[0], p[1] - EYE[1], p[2] - EYE[2]], n) / dot(d2, n);
+                    [0, 1, 2].map(|k| EYE[k] + t * d2[k] - p[k])
+                };
+                let dpdx = transfer(ray_dir(row as f64, col as f64 + 1.0));
+                let dpdy = transfer(ray_dir(row as f64 + 1.0, col as f64));
+                // N = P on the unit sphere: dN = dP minus its normal part.
+                let dn = |dp: [f64; 3]| {
+                    let k = dot(dp, n);
+                    [0, 1, 2].map(|i| dp[i] - n[i] * k)
+                };
+                let fields = [p, n, v, dpdx, dpdy, dn(dpdx), dn(dpdy)];
+                for (f, vals) in fields.iter().enumerate() {
+                    for k in 0..3 {
+                        if f * 3 < F64_FIELDS {
+                            f64s[f * 3 + k].push(vals[k]);
+                        }
+                        f32s[f * 3 + k].push(vals[k] as f32);
+                    }
+                }
+                pixels.push((row * SIZE + col) as u32);
+            }
+        }
+        let n_hit = pixels.len();
+        let padded = n_hit.div_ceil(PAD) * PAD;
+        for a in &mut f64s {
+            let last = *a.last().expect("the sphere is in view");
+            a.resize(padded, last);
+        }
+        for a in &mut f32s {
+            let last = *a.last().expect("the sphere is in view");
+            a.resize(padded, last);
+        }
+        Self {
+            n_hit,
+            pixels,
+            f32s,
+            f64s,
+        }
+    }
+
+    /// Number of hit points (183 020).
+    #[must_use]
+    pub fn n_hit(&self) -> usize {
+        self.n_hit
+    }
+
+    /// Number of points including the padding (a multiple of [`PAD`]).
+    #[must_use]
+    pub fn padded_len(&self) -> usize {
+        self.f32s[0].len()
+    }
+
+    /// Pixel index `row·512 + col` of each hit point.
+    #[must_use]
+    pub fn pixels(&self) -> &[u32] {
+        &self.pixels
+    }
+
+    /// The hit mask of the image, row-major (`ref/mask.npy`).
+    #[must_use]
+    pub fn mask(&self) -> Vec<bool> {
+        let mut m = vec![false; SIZE * SIZE];
+        for &p in &self.pixels {
+            m[p as usize] = true;
+        }
+        m
+    }
+
+    /// The f32 input arrays `[P.x, P.y, P.z, N.x, N.y, N.z, V.x, V.y, V.z]` (padded).
+    #[must_use]
+    pub fn inputs_f32(&self) -> [&[f32]; 9] {
+        core::array::from_fn(|k| self.f32s[k].as_slice())
+    }
+
+    /// The f64 input arrays, as [`WorkloadScene::inputs_f32`].
+    #[must_use]
+    pub fn inputs_f64(&self) -> [&[f64]; 9] {
+        core::array::from_fn(|k| self.f64s[k].as_slice())
+    }
+
+    #[inline(always)]
+    fn load3<F: ShadingFloat>(&self, k: usize, i: usize) -> Vec3<F> {
+        // The f64 inputs for f64-based instantiations (§2: the setup is f64, rounded to the
+        // shading precision); the constant test is folded at compile time.
+        let c = |k: usize| {
+            if F::UNIT_ROUNDOFF < 1e-10 && k < F64_FIELDS {
+                F::from_lanes(&self.f64s[k][i..i + F::LANES])
+            } else {
+                F::load(&self.f32s[k][i..])
+            }
+        };
+        Vec3::new(c(k), c(k + 1), c(k + 2))
+    }
+
+    /// The globals of points `i .. i + F::LANES`: `P`, `N` (= `Ng`), `I = -V`, the eye as `E`,
+    /// `Cs = Os = 1`; P and N carry their pixel footprint as derivatives (used only by dual
+    /// numbers).
+    #[inline(always)]
+    #[must_use]
+    pub fn globals<F: ShadingFloat>(&self, i: usize) -> Globals<F> {
+        let seeded = |v: Vec3<F>, dx: usize, dy: usize| {
+            if F::HAS_DERIVS {
+                let (a, b) = (self.load3::<F>(dx, i), self.load3::<F>(dy, i));
+                Vec3::new(
+                    v.x.with_derivs(a.x, b.x),
+                    v.y.with_derivs(a.y, b.y),
+                    v.z.with_derivs(a.z, b.z),
+                )
+            } else {
+                v
+            }
+        };
+        let p = seeded(self.load3(P, i), DPDX, DPDY);
+        let n = seeded(self.load3(N, i), DNDX, DNDY);
+        let zero = F::c(0.0);
+        Globals {
+            P: p,
+            N: n,
+            Ng: n,
+            I: -self.load3::<F>(V, i),
+            E: Vec3::from_array(EYE),
+            s: zero,
+            t: zero,
+            u: zero,
+            v: zero,
+            du: zero,
+            dv: zero,
+            dPdu: Vec3::zero(),
+            dPdv: Vec3::zero(),
+            Cs: Color::c(1.0, 1.0, 1.0),
+            Os: Color::c(1.0, 1.0, 1.0),
+        }
+    }
+
+    /// One shading call over points `start .. start + out[0].len()` (a multiple of `F::LANES`)
+    /// with instantiation `F`: writes `Ci` (r, g, b) to `out` as f32 lane values (the value
+    /// part for duals, the midpoint for intervals). Monomorphized per concrete shader through
+    /// [`SurfaceShader::visit`], so the shader is inlined into the loop.
+    pub fn shade<F: ShadingFloat>(
+        &self,
+        shader: &WorkloadShader,
+        lights: &[Light],
+        start: usize,
+        out: [&mut [f32]; 3],
+    ) {
+        struct Job<'a, F> {
+            scene: &'a WorkloadScene,
+            lights: &'a [Light],
+            start: usize,
+            out: [&'a mut [f32]; 3],
+            _f: core::marker::PhantomData<F>,
+        }
+        impl<F: ShadingFloat> SurfaceVisitor for Job<'_, F> {
+            type Output = ();
+            #[inline(never)]
+            fn visit<S: SurfaceShader>(self, shader: &S) {
+                let [r, g, b] = self.out;
+                let len = r.len();
+                assert!(len % F::LANES == 0 && g.len() == len && b.len() == len);
+                assert!(self.start + len <= self.scene.padded_len());
+                let mut k = 0;
+                while k < len {
+                    let mut ctx = PointContext::new(self.scene.globals::<F>(self.start + k), self.lights);
+                    let mut e = Exec::<F>::new();
+                    let ci = shader.shade(&mut ctx, &mut e).Ci;
+                    ci.r.store(&mut r[k..]);
+                    ci.g.store(&mut g[k..]);
+                    ci.b.store(&mut b[k..]);
+                    k += F::LANES;
+                }
+            }
+        }
+        shader.visit(Job::<F> {
+            scene: self,
+            lights,
+            start,
+            out,
+            _f: core::marker::PhantomData,
+        });
+    }
+
+    /// Shades every point with `F` on the calling thread; returns `Ci` as three padded arrays.
+    #[must_use]
+    pub fn shade_all<F: ShadingFloat>(&self, shader: &WorkloadShader, lights: &[Light]) -> [Vec<f32>; 3] {
+        let n = self.padded_len();
+        let [mut r, mut g, mut b] = [vec![0.0; n], vec![0.0; n], vec![0.0; n]];
+        self.shade::<F>(shader, lights, 0, [&mut r, &mut g, &mut b]);
+        [r, g, b]
+    }
+
+    /// Shades the points with `F` and keeps full lane values as f64 (for the f64 reference).
+    #[must_use]
+    pub fn shade_all_f64<F: ShadingFloat>(&self, shader: &WorkloadShader, lights: &[Light]) -> [Vec<f64>; 3] {
+        struct Job<'a, F> {
+            scene: &'a WorkloadScene,
+            lights: &'a [Light],
+            _f: core::marker::PhantomData<F>,
+        }
+        impl<F: ShadingFloat> SurfaceVisitor for Job<'_, F> {
+            type Output = [Vec<f64>; 3];
+            fn visit<S: SurfaceShader>(self, shader: &S) -> [Vec<f64>; 3] {
+                let n = self.scene.padded_len();
+                let mut out = [vec![0.0; n], vec![0.0; n], vec![0.0; n]];
+                for k in (0..n).step_by(F::LANES) {
+                    let mut ctx = PointContext::new(self.scene.globals::<F>(k), self.lights);
+                    let ci = shader.shade(&mut ctx, &mut Exec::<F>::new()).Ci;
+                    for (ch, v) in [ci.r, ci.g, ci.b].iter().enumerate() {
+                        for l in 0..F::LANES {
+                            out[ch][k + l] = v.lane(l);
+                        }
+                    }
+                }
+                out
+            }
+        }
+        shader.visit(Job::<F> {
+            scene: self,
+            lights,
+            _f: core::marker::PhantomData,
+        })
+    }
+
+    /// Scatters per-hit colours into a 512×512×3 image (`[row][col][channel]`, black
+    /// background), as the reference arrays are laid out.
+    #[must_use]
+    pub fn to_image<T: Copy + Default>(&self, ci: &[Vec<T>; 3]) -> Vec<T> {
+        let mut img = vec![T::default(); SIZE * SIZE * 3];
+        for (k, &p) in self.pixels.iter().enumerate() {
+            for ch in 0..3 {
+                img[p as usize * 3 + ch] = ci[ch][k];
+            }
+        }
+        img
+    }
+}

@@ -1,0 +1,217 @@
+//! The shared shading workload (`shaders/assets/workload_ref/shading_workload.md`): the check
+//! values of its §7, the hit mask, and every instantiation's images against the reference
+//! arrays (acceptance bound 1e-4 max abs error; the f64 instantiation must reproduce the
+//! reference to its f32 rounding).
+
+use anysl_ad::Dual;
+use anysl_core::stdlib::{lattice_hash, perlin3};
+use anysl_core::{LatticeBits, ShadingFloat, Vec3};
+use anysl_shaders::workload::{self, reference, WorkloadScene, WorkloadShader, SIZE};
+use anysl_simd::{F32x16, F32x4, F32x8};
+use std::sync::OnceLock;
+
+fn scene() -> &'static WorkloadScene {
+    static SCENE: OnceLock<WorkloadScene> = OnceLock::new();
+    SCENE.get_or_init(WorkloadScene::new)
+}
+
+fn reference_image(shader: &str) -> &'static [f32] {
+    static REFS: OnceLock<Vec<(String, Vec<f32>)>> = OnceLock::new();
+    let refs = REFS.get_or_init(|| {
+        WorkloadShader::NAMES
+            .iter()
+            .map(|n| {
+                (
+                    n.to_string(),
+                    reference::load_reference(n).expect("reference arrays in the repo"),
+                )
+            })
+            .collect()
+    });
+    &refs.iter().find(|(n, _)| n == shader).expect("a workload shader").1
+}
+
+fn hash_lanes<F: ShadingFloat>(ijk: [i32; 3]) -> F::Bits {
+    lattice_hash(&ijk.map(|c| <F::Bits as LatticeBits>::splat(c as u32)), 0)
+}
+
+/// §7: the hash of integer lattice points (inputs as signed int32).
+#[test]
+fn hash_check_values() {
+    let cases: [([i32; 3], u32); 8] = [
+        ([0, 0, 0], 0x0000_0000),
+        ([1, 0, 0], 0x9D5A_7ACD),
+        ([0, 1, 0], 0x2859_CC20),
+        ([0, 0, 1], 0x3589_17CF),
+        ([1, 2, 3], 0x0BD9_0090),
+        ([-1, -1, -1], 0x4982_21C6),
+        ([-7, 13, -2], 0x75A4_F030),
+        ([100, -200, 300], 0xB4A8_71B0),
+    ];
+    for (ijk, want) in cases {
+        let h = lattice_hash::<u32>(&ijk.map(|c| c as u32), 0);
+        assert_eq!(h, want, "hash{ijk:?} = {h:#010X}, want {want:#010X}");
+        // The SIMD hash computes the same bits in every lane.
+        let x8 = hash_lanes::<F32x8>(ijk);
+        for l in 0..8 {
+            assert_eq!(x8.lane(l), want);
+        }
+    }
+}
+
+/// §7: noise in f64 to the printed digits, f32 within 1e-7 of it (the document: ~3e-8).
+#[test]
+fn noise_check_values() {
+    let cases = [
+        ([0.3125, 0.6875, 0.1875], 0.006638754),
+        ([1.25, -0.75, 2.5], 0.201884270),
+        ([-3.375, 0.125, 7.875], 0.192607176),
+        ([10.625, -4.25, 0.375], 0.532987841),
+        ([100.5625, -57.125, 3.0625], 0.015444126),
+        ([0.0, 0.0, 0.0], 0.0),
+    ];
+    for (p, want) in cases {
+        let n64 = perlin3(Vec3::<f64>::from_array(p), None, 0);
+        assert!((n64 - want).abs() <= 5e-10, "f64 noise{p:?} = {n64}, want {want}");
+        let n32 = perlin3(Vec3::<f32>::from_array(p), None, 0);
+        assert!(
+            (f64::from(n32) - want).abs() <= 1e-7,
+            "f32 noise{p:?} = {n32}, want {want}"
+        );
+        let x8 = perlin3(Vec3::<F32x8>::from_array(p), None, 0);
+        assert_eq!(x8.to_array(), [n32; 8], "F32x8 lanes = f32");
+    }
+}
+
+/// §2: 183 020 hit points, the same hit mask as `ref/mask.npy`.
+#[test]
+fn scene_matches_reference_mask() {
+    let s = scene();
+    assert_eq!(s.n_hit(), 183_020);
+    assert_eq!(s.padded_len() % workload::PAD, 0);
+    let want = reference::load_reference_mask().expect("mask.npy in the repo");
+    assert_eq!(want.len(), SIZE * SIZE);
+    let got = s.mask();
+    let differ = got.iter().zip(&want).filter(|(a, b)| a != b).count();
+    assert_eq!(differ, 0, "{differ} pixels differ from mask.npy");
+}
+
+/// §7 table: mean RGB over the hit pixels and three probe pixels, per shader, in f64.
+#[test]
+fn f64_matches_check_values_and_reference() {
+    let table: [(&str, [[f64; 3]; 4]); 4] = [
+        (
+            "plastic",
+            [
+                [0.484441540, 0.200232067, 0.161361397],
+                [0.627016675, 0.283856940, 0.232643421],
+                [0.976342153, 0.533089290, 0.439433061],
+                [0.228960351, 0.106356697, 0.114099848],
+            ],
+        ),
+        (
+            "checker",
+            [
+                [0.303641900, 0.313105859, 0.366170809],
+                [0.633958096, 0.594376183, 0.537299118],
+                [0.299581287, 0.355870033, 0.520878130],
+                [0.241991672, 0.261844941, 0.315114614],
+            ],
+        ),
+        (
+            "wood",
+            [
+                [0.250376856, 0.171814386, 0.120168234],
+                [0.352225350, 0.251172989, 0.181318726],
+                [0.599601366, 0.455553151, 0.346311613],
+                [0.092984607, 0.071586984, 0.069536289],
+            ],
+        ),
+        (
+            "granite",
+            [
+                [0.375366780, 0.358418850, 0.373492098],
+                [0.269449117, 0.251891672, 0.257591706],
+                [0.788123288, 0.731303859, 0.692565039],
+                [0.158148684, 0.173263941, 0.238347717],
+            ],
+        ),
+    ];
+    let probes = [(256, 256), (128, 200), (400, 380)];
+    let s = scene();
+    let lights = workload::lights();
+    for (name, [mean, p0, p1, p2]) in table {
+        let shader = WorkloadShader::by_name(name).expect("a workload shader");
+        let ci = s.shade_all_f64::<f64>(&shader, &lights);
+        let n = s.n_hit();
+        for ch in 0..3 {
+            let m = ci[ch][..n].iter().sum::<f64>() / n as f64;
+            assert!(
+                (m - mean[ch]).abs() <= 1e-9,
+                "{name}: mean[{ch}] = {m:.9}, want {:.9}",
+                mean[ch]
+            );
+        }
+        let image = s.to_image(&ci);
+        for ((row, col), want) in probes.iter().zip([p0, p1, p2]) {
+            for ch in 0..3 {
+                let got = image[(row * SIZE + col) * 3 + ch];
+                assert!(
+                    (got - want[ch]).abs() <= 1e-9,
+                    "{name} ({row}, {col})[{ch}] = {got:.9}, want {:.9}",
+                    want[ch]
+                );
+            }
+        }
+        // The reference is this image rounded to f32.
+        let reference = reference_image(name);
+        let max = image
+            .iter()
+            .zip(reference)
+            .map(|(a, b)| (a - f64::from(*b)).abs())
+            .fold(0.0, f64::max);
+        assert!(max <= 1.2e-7, "{name}: f64 image differs from the reference by {max:e}");
+    }
+}
+
+/// Every f32-based instantiation reproduces the reference images within the workload's bound
+/// (1e-4; in practice a few 1e-6), with no pixel off by more than 1e-3.
+fn check_instantiation<F: ShadingFloat>() {
+    let s = scene();
+    let lights = workload::lights();
+    for shader in WorkloadShader::all() {
+        let image = s.to_image(&s.shade_all::<F>(&shader, &lights));
+        let err = reference::image_error(&image, reference_image(shader.name()));
+        assert!(
+            err.max_abs_err <= 1e-4 && err.pixels_over_1e3 == 0,
+            "{} with {}: {err:?}",
+            shader.name(),
+            F::NAME
+        );
+    }
+}
+
+#[test]
+fn f32_matches_reference() {
+    check_instantiation::<f32>();
+}
+
+#[test]
+fn f32x4_matches_reference() {
+    check_instantiation::<F32x4>();
+}
+
+#[test]
+fn f32x8_matches_reference() {
+    check_instantiation::<F32x8>();
+}
+
+#[test]
+fn f32x16_matches_reference() {
+    check_instantiation::<F32x16>();
+}
+
+#[test]
+fn dual_f32x8_matches_reference() {
+    check_instantiation::<Dual<F32x8>>();
+}
