@@ -7,6 +7,7 @@
 //! code over structured control flow) → passes → back ends.
 pub use anysl_core as core;
 
+pub mod builtins;
 pub mod diag;
 pub mod front;
 pub mod ir;
