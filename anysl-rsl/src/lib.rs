@@ -11,6 +11,7 @@ pub mod builtins;
 pub mod diag;
 pub mod front;
 pub mod ir;
+pub mod back;
 pub mod passes;
 pub mod span;
 pub mod types;

@@ -1,0 +1,788 @@
+//! The interpreter's built-in functions: each RSL built-in overload resolved once, at
+//! preparation, to a [`Bi`], and executed per chunk through the generic standard library of
+//! `anysl-core` (the same code the generic Rust shaders and generated Rust call).
+
+use super::exec::Frame;
+use super::prepare::Loc;
+use super::texture;
+use crate::ir::Const;
+use crate::types::BaseType;
+use anysl_core::prelude::*;
+
+/// Component-wise unary math.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Un {
+    Abs,
+    Sign,
+    Floor,
+    Ceil,
+    Round,
+    Sqrt,
+    InvSqrt,
+    Exp,
+    Log,
+    Sin,
+    Cos,
+    Tan,
+    Asin,
+    Acos,
+    Atan,
+    Radians,
+    Degrees,
+}
+
+/// Component-wise binary math (second operand may be a broadcast float).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Bin {
+    Pow,
+    Atan2,
+    LogBase,
+    Mod,
+    Min,
+    Max,
+    Step,
+}
+
+/// Coordinate-system transform flavours.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Xf {
+    Point,
+    Vector,
+    Normal,
+}
+
+/// A resolved built-in overload.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Bi {
+    Un(Un, u32),
+    Bin(Bin, u32, bool),
+    Clamp(u32, bool),
+    Mix(u32, bool),
+    Smoothstep(u32),
+    Length,
+    Normalize,
+    Distance,
+    Faceforward(bool),
+    Reflect,
+    Refract,
+    Fresnel,
+    Ptlined,
+    Rotate,
+    Comp(u32),
+    SetComp(u32),
+    Xcomp(u32),
+    SetXcomp(u32),
+    MComp,
+    MSetComp,
+    /// `transform([from,] to, p)` or `transform(m, p)`: `matrix` when the first argument is a
+    /// matrix; `spaces` = number of space-name arguments.
+    Transform(Xf, bool, u32),
+    Ctransform(u32),
+    Determinant,
+    Inverse,
+    Translate,
+    RotateM,
+    ScaleM,
+    Du(u32),
+    Dv(u32),
+    Deriv(u32),
+    Area,
+    CalcNormal,
+    FilterWidth(u32),
+    FilterStep(u32),
+    Noise { dims: u8, out: u32, signed: bool },
+    PNoise { dims: u8, out: u32, signed: bool },
+    CellNoise { dims: u8, out: u32 },
+    Fbm { dims: u8 },
+    Turbulence { dims: u8 },
+    Random(u32),
+    /// `spline([basis,] x, knots…)`: element width, number of knots, knots given as an array,
+    /// basis string argument present.
+    Spline { w: u32, n: u32, array: bool, basis: bool },
+    Ambient,
+    Diffuse,
+    Specular,
+    SpecularBrdf,
+    Phong,
+    Trace,
+    Texture { kind: texture::Kind, out: u32, coords: u32 },
+    Concat,
+    Format,
+    Printf,
+    Match,
+    /// Message passing and queries: reports "not found" (returns 0, leaves the output).
+    Query,
+    ShaderName,
+    Depth,
+    Sqr,
+}
+
+fn w(t: BaseType) -> u32 {
+    t.components() as u32
+}
+
+/// Picks the implementation for `name` with these argument types (base, array length),
+/// constant arguments, output-slot types and return type. `None` when unsupported.
+#[must_use]
+pub fn resolve(
+    name: &str,
+    args: &[(BaseType, Option<u32>)],
+    consts: &[Option<Const>],
+    _outs: &[Option<(BaseType, Option<u32>)>],
+    ret: BaseType,
+) -> Option<Bi> {
+    use BaseType as B;
+    let n = args.len();
+    let ty = |i: usize| args.get(i).map_or(B::Void, |a| a.0);
+    let rw = w(ret);
+    let dims = |a: &[(BaseType, Option<u32>)]| -> Option<u8> {
+        match a.iter().map(|x| x.0).collect::<Vec<_>>().as_slice() {
+            [B::Float] => Some(1),
+            [B::Float, B::Float] => Some(2),
+            [p] if p.is_triple() => Some(3),
+            [p, B::Float] if p.is_triple() => Some(4),
+            _ => None,
+        }
+    };
+    let un = |u: Un| (n == 1).then_some(Bi::Un(u, w(ty(0))));
+    Some(match name {
+        "abs" => un(Un::Abs)?,
+        "sign" => un(Un::Sign)?,
+        "floor" => un(Un::Floor)?,
+        "ceil" => un(Un::Ceil)?,
+        "round" => un(Un::Round)?,
+        "sqrt" => un(Un::Sqrt)?,
+        "inversesqrt" => un(Un::InvSqrt)?,
+        "exp" => un(Un::Exp)?,
+        "log" if n == 1 => un(Un::Log)?,
+        "log" if n == 2 => Bi::Bin(Bin::LogBase, w(ty(0)), true),
+        "sin" => un(Un::Sin)?,
+        "cos" => un(Un::Cos)?,
+        "tan" => un(Un::Tan)?,
+        "asin" => un(Un::Asin)?,
+        "acos" => un(Un::Acos)?,
+        "atan" if n == 1 => un(Un::Atan)?,
+        "atan" if n == 2 => Bi::Bin(Bin::Atan2, 1, true),
+        "radians" => un(Un::Radians)?,
+        "degrees" => un(Un::Degrees)?,
+        "sqr" => Bi::Sqr,
+        "pow" if n == 2 => Bi::Bin(Bin::Pow, w(ty(0)), w(ty(1)) == 1),
+        "mod" if n == 2 => Bi::Bin(Bin::Mod, w(ty(0)), w(ty(1)) == 1),
+        "min" if n >= 2 => Bi::Bin(Bin::Min, rw, false),
+        "max" if n >= 2 => Bi::Bin(Bin::Max, rw, false),
+        "step" if n == 2 => Bi::Bin(Bin::Step, rw, w(ty(0)) == 1),
+        "clamp" if n == 3 => Bi::Clamp(rw, w(ty(1)) == 1),
+        "mix" if n == 3 => Bi::Mix(rw, w(ty(2)) == 1),
+        "smoothstep" if n == 3 => Bi::Smoothstep(rw),
+        "length" => Bi::Length,
+        "normalize" => Bi::Normalize,
+        "distance" => Bi::Distance,
+        "faceforward" => Bi::Faceforward(n == 3),
+        "reflect" => Bi::Reflect,
+        "refract" => Bi::Refract,
+        "fresnel" => Bi::Fresnel,
+        "ptlined" => Bi::Ptlined,
+        "rotate" if ty(0).is_triple() => Bi::Rotate,
+        "rotate" => Bi::RotateM,
+        "translate" => Bi::Translate,
+        "scale" => Bi::ScaleM,
+        "xcomp" => Bi::Xcomp(0),
+        "ycomp" => Bi::Xcomp(1),
+        "zcomp" => Bi::Xcomp(2),
+        "setxcomp" => Bi::SetXcomp(0),
+        "setycomp" => Bi::SetXcomp(1),
+        "setzcomp" => Bi::SetXcomp(2),
+        "comp" if ty(0) == B::Matrix => Bi::MComp,
+        "comp" => Bi::Comp(w(ty(0))),
+        "setcomp" if ty(0) == B::Matrix => Bi::MSetComp,
+        "setcomp" => Bi::SetComp(w(ty(0))),
+        "transform" | "vtransform" | "ntransform" => {
+            let xf = match (name, ret) {
+                ("vtransform", _) | (_, B::Vector) => Xf::Vector,
+                ("ntransform", _) | (_, B::Normal) => Xf::Normal,
+                _ => Xf::Point,
+            };
+            let matrix = args.iter().any(|a| a.0 == B::Matrix);
+            let spaces = args.iter().filter(|a| a.0 == B::String).count() as u32;
+            Bi::Transform(xf, matrix, spaces)
+        }
+        "ctransform" => Bi::Ctransform(args.iter().filter(|a| a.0 == B::String).count() as u32),
+        "determinant" => Bi::Determinant,
+        "inverse" => Bi::Inverse,
+        "Du" => Bi::Du(w(ty(0))),
+        "Dv" => Bi::Dv(w(ty(0))),
+        "Deriv" => Bi::Deriv(w(ty(0))),
+        "area" => Bi::Area,
+        "calculatenormal" => Bi::CalcNormal,
+        "filterwidth" => Bi::FilterWidth(w(ty(0))),
+        "filterstep" => Bi::FilterStep(args.iter().take_while(|a| a.0 != B::String).count() as u32),
+        "noise" | "snoise" => Bi::Noise { dims: dims(args)?, out: rw, signed: name == "snoise" },
+        "pnoise" | "psnoise" => {
+            let half = n / 2;
+            Bi::PNoise { dims: dims(&args[..half])?, out: rw, signed: name == "psnoise" }
+        }
+        "cellnoise" => Bi::CellNoise { dims: dims(args)?, out: rw },
+        "fbm" => Bi::Fbm { dims: dims(&args[..args.iter().position(|a| a.0 == B::Float && n > 1).map_or(n, |_| 1)])? },
+        "turbulence" => Bi::Turbulence { dims: dims(&args[..1])? },
+        "random" => Bi::Random(rw),
+        "spline" => {
+            let basis = ty(0) == B::String;
+            let first = usize::from(basis) + 1;
+            let rest = args.get(first..)?;
+            if rest.len() == 1 && rest[0].1.is_some() {
+                Bi::Spline { w: w(rest[0].0), n: rest[0].1?, array: true, basis }
+            } else {
+                Bi::Spline { w: rw, n: rest.len() as u32, array: false, basis }
+            }
+        }
+        "ambient" => Bi::Ambient,
+        "diffuse" => Bi::Diffuse,
+        "specular" => Bi::Specular,
+        "specularbrdf" => Bi::SpecularBrdf,
+        "phong" => Bi::Phong,
+        "trace" => Bi::Trace,
+        "texture" | "environment" | "shadow" => {
+            let kind = match name {
+                "texture" => texture::Kind::Texture,
+                "environment" => texture::Kind::Environment,
+                _ => texture::Kind::Shadow,
+            };
+            // Coordinates: the numeric arguments before the first parameter-list string.
+            let coords = args.iter().skip(1).take_while(|a| a.0 != B::String).count() as u32;
+            Bi::Texture { kind, out: rw, coords }
+        }
+        "concat" => Bi::Concat,
+        "format" => Bi::Format,
+        "printf" => Bi::Printf,
+        "match" => Bi::Match,
+        "surface" | "lightsource" | "displacement" | "atmosphere" | "incident" | "opposite" | "attribute"
+        | "option" | "rendererinfo" | "textureinfo" => Bi::Query,
+        "shadername" => Bi::ShaderName,
+        "depth" => Bi::Depth,
+        _ => {
+            let _ = consts;
+            return None;
+        }
+    })
+}
+
+fn un<F: ShadingFloat>(u: Un, x: F) -> F {
+    match u {
+        Un::Abs => x.abs(),
+        Un::Sign => sign(x),
+        Un::Floor => x.floor(),
+        Un::Ceil => x.ceil(),
+        Un::Round => x.round(),
+        Un::Sqrt => x.sqrt(),
+        Un::InvSqrt => inversesqrt(x),
+        Un::Exp => x.exp(),
+        Un::Log => x.ln(),
+        Un::Sin => x.sin(),
+        Un::Cos => x.cos(),
+        Un::Tan => x.tan(),
+        Un::Asin => x.asin(),
+        Un::Acos => x.acos(),
+        Un::Atan => x.atan(),
+        Un::Radians => radians(x),
+        Un::Degrees => degrees(x),
+    }
+}
+
+fn bin<F: ShadingFloat>(b: Bin, x: F, y: F) -> F {
+    match b {
+        Bin::Pow => x.pow(y),
+        Bin::Atan2 => x.atan2(y),
+        Bin::LogBase => log_base(x, y),
+        Bin::Mod => fmod(x, y),
+        Bin::Min => x.min(y),
+        Bin::Max => x.max(y),
+        Bin::Step => step(x, y),
+    }
+}
+
+fn domain<F: ShadingFloat>(fr: &Frame<F>, args: &[Loc], dims: u8, k: usize) -> NoiseDomain<F> {
+    match dims {
+        1 => NoiseDomain::D1(fr.get(args[0].off(), k)),
+        2 => NoiseDomain::D2(fr.get(args[0].off(), k), fr.get(args[1].off(), k)),
+        3 => NoiseDomain::D3(fr.vec3(args[0].off(), k)),
+        _ => NoiseDomain::D4(fr.vec3(args[0].off(), k), fr.get(args[1].off(), k)),
+    }
+}
+
+fn space_str<F: ShadingFloat>(fr: &Frame<F>, l: Loc) -> &str {
+    match l {
+        Loc::Str(i, _) => fr.s[i as usize].as_str(),
+        _ => "",
+    }
+}
+
+/// Runs built-in `f` for chunk `k` with live lanes `m`.
+#[allow(clippy::too_many_arguments, clippy::too_many_lines)]
+pub fn call<F: ShadingFloat, C: ShadingContext<F>>(
+    fr: &mut Frame<F>,
+    ctx: Option<&mut C>,
+    f: Bi,
+    dst: Loc,
+    args: &[Loc],
+    outs: &[Option<Loc>],
+    k: usize,
+    m: F::Mask,
+) {
+    let d = dst.off();
+    let a = |i: usize| args.get(i).map_or(0, |l| l.off());
+    let aw = |i: usize| args.get(i).map_or(1, |l| l.width());
+    macro_rules! set3 {
+        ($v:expr) => {{
+            let v = $v;
+            fr.set3(d, k, [v.x, v.y, v.z]);
+        }};
+    }
+    macro_rules! setc {
+        ($v:expr) => {{
+            let v = $v;
+            fr.set3(d, k, [v.r, v.g, v.b]);
+        }};
+    }
+    let out_write = |fr: &mut Frame<F>, i: usize, vals: &[F]| {
+        if let Some(Some(l)) = outs.get(i) {
+            fr.write(l.off(), k, m, vals);
+        }
+    };
+    match f {
+        Bi::Un(u, w) => {
+            for c in 0..w {
+                let v = un(u, fr.get(a(0) + c, k));
+                fr.set(d + c, k, v);
+            }
+        }
+        Bi::Bin(b, w, sb) => {
+            let sa = aw(0) == 1;
+            let sb = sb || aw(1) == 1;
+            for c in 0..w {
+                let x = fr.get(if sa { a(0) } else { a(0) + c }, k);
+                let y = fr.get(if sb { a(1) } else { a(1) + c }, k);
+                let mut v = bin(b, x, y);
+                // min/max with more than two arguments fold left.
+                for j in 2..args.len() {
+                    let z = fr.get(if aw(j) == 1 { a(j) } else { a(j) + c }, k);
+                    v = bin(b, v, z);
+                }
+                fr.set(d + c, k, v);
+            }
+        }
+        Bi::Clamp(w, _) => {
+            for c in 0..w {
+                let g = |i: usize| fr.get(if aw(i) == 1 { a(i) } else { a(i) + c }, k);
+                let v = clamp(g(0), g(1), g(2));
+                fr.set(d + c, k, v);
+            }
+        }
+        Bi::Mix(w, _) => {
+            for c in 0..w {
+                let g = |i: usize| fr.get(if aw(i) == 1 { a(i) } else { a(i) + c }, k);
+                let v = mix(g(0), g(1), g(2));
+                fr.set(d + c, k, v);
+            }
+        }
+        Bi::Smoothstep(w) => {
+            for c in 0..w {
+                let g = |i: usize| fr.get(if aw(i) == 1 { a(i) } else { a(i) + c }, k);
+                let v = smoothstep(g(0), g(1), g(2));
+                fr.set(d + c, k, v);
+            }
+        }
+        Bi::Sqr => {
+            let x = fr.get(a(0), k);
+            fr.set(d, k, x * x);
+        }
+        Bi::Length => {
+            let v = fr.vec3(a(0), k).length();
+            fr.set(d, k, v);
+        }
+        Bi::Normalize => set3!(fr.vec3(a(0), k).normalize()),
+        Bi::Distance => {
+            let v = distance(fr.vec3(a(0), k), fr.vec3(a(1), k));
+            fr.set(d, k, v);
+        }
+        Bi::Faceforward(three) => {
+            let nref = if three {
+                fr.vec3(a(2), k)
+            } else {
+                ctx.map_or_else(|| fr.vec3(a(0), k), |c| c.globals().Ng)
+            };
+            set3!(faceforward(fr.vec3(a(0), k), fr.vec3(a(1), k), nref));
+        }
+        Bi::Reflect => set3!(reflect(fr.vec3(a(0), k), fr.vec3(a(1), k))),
+        Bi::Refract => set3!(refract(fr.vec3(a(0), k), fr.vec3(a(1), k), fr.get(a(2), k))),
+        Bi::Fresnel => {
+            let r = fresnel(fr.vec3(a(0), k), fr.vec3(a(1), k), fr.get(a(2), k));
+            out_write(fr, 3, &[r.kr]);
+            out_write(fr, 4, &[r.kt]);
+            out_write(fr, 5, &[r.r.x, r.r.y, r.r.z]);
+            out_write(fr, 6, &[r.t.x, r.t.y, r.t.z]);
+        }
+        Bi::Ptlined => {
+            let v = ptlined(fr.vec3(a(0), k), fr.vec3(a(1), k), fr.vec3(a(2), k));
+            fr.set(d, k, v);
+        }
+        Bi::Rotate => set3!(rotate(fr.vec3(a(0), k), fr.get(a(1), k), fr.vec3(a(2), k), fr.vec3(a(3), k))),
+        Bi::Comp(_) => {
+            let i = fr.get(a(1), k).floor().max(F::c(0.0)).min(F::c(2.0));
+            let v = fr.vec3(a(0), k);
+            let r = F::select(i.eq(F::c(0.0)), v.x, F::select(i.eq(F::c(1.0)), v.y, v.z));
+            fr.set(d, k, r);
+        }
+        Bi::SetComp(_) => {
+            // setcomp(output c, i, x): the first argument is the output slot.
+            if let Some(Some(l)) = outs.first() {
+                let i = fr.get(a(1), k).floor();
+                let x = fr.get(a(2), k);
+                for c in 0..3u32 {
+                    let hit = m & i.eq(F::c(f64::from(c)));
+                    if hit.any() {
+                        fr.write(l.off() + c, k, hit, &[x]);
+                    }
+                }
+            }
+        }
+        Bi::Xcomp(c) => {
+            let v = fr.get(a(0) + c, k);
+            fr.set(d, k, v);
+        }
+        Bi::SetXcomp(c) => {
+            if let Some(Some(l)) = outs.first() {
+                let x = fr.get(a(1), k);
+                fr.write(l.off() + c, k, m, &[x]);
+            }
+        }
+        Bi::MComp => {
+            let (r, c) = (fr.get(a(1), k).lane(0) as u32, fr.get(a(2), k).lane(0) as u32);
+            let v = fr.get(a(0) + (r.min(3) * 4 + c.min(3)), k);
+            fr.set(d, k, v);
+        }
+        Bi::MSetComp => {
+            if let Some(Some(l)) = outs.first() {
+                let (r, c) = (fr.get(a(1), k).lane(0) as u32, fr.get(a(2), k).lane(0) as u32);
+                let x = fr.get(a(3), k);
+                fr.write(l.off() + r.min(3) * 4 + c.min(3), k, m, &[x]);
+            }
+        }
+        Bi::Transform(xf, matrix, _spaces) => {
+            let last = args.len() - 1;
+            let v = fr.vec3(a(last), k);
+            let r = if matrix {
+                let mi = args.iter().position(|l| l.width() == 16).unwrap_or(0);
+                let mx = fr.matrix(a(mi), k);
+                match xf {
+                    Xf::Point => mx.transform_point(v),
+                    Xf::Vector => mx.transform_vector(v),
+                    Xf::Normal => mx.transform_normal(v),
+                }
+            } else {
+                // All named coordinate systems coincide with the shading space here.
+                v
+            };
+            set3!(r);
+        }
+        Bi::Ctransform(spaces) => {
+            let c = fr.color(a(spaces as usize), k);
+            let from = if spaces == 2 { ColorSpace::from_name(space_str(fr, args[0])) } else { Some(ColorSpace::Rgb) };
+            let to = ColorSpace::from_name(space_str(fr, args[spaces as usize - 1]));
+            let r = match (from, to) {
+                (Some(f), Some(t)) => ctransform(f, t, c),
+                _ => c,
+            };
+            setc!(r);
+        }
+        Bi::Determinant => {
+            let v = fr.matrix(a(0), k).determinant();
+            fr.set(d, k, v);
+        }
+        Bi::Inverse => {
+            let v = fr.matrix(a(0), k).inverse();
+            fr.set_matrix(d, k, &v);
+        }
+        Bi::Translate => {
+            let r = fr.matrix(a(0), k) * Matrix4::translate(fr.vec3(a(1), k));
+            fr.set_matrix(d, k, &r);
+        }
+        Bi::RotateM => {
+            let r = fr.matrix(a(0), k) * Matrix4::rotate(fr.get(a(1), k), fr.vec3(a(2), k));
+            fr.set_matrix(d, k, &r);
+        }
+        Bi::ScaleM => {
+            let r = fr.matrix(a(0), k) * Matrix4::scale(fr.vec3(a(1), k));
+            fr.set_matrix(d, k, &r);
+        }
+        Bi::Du(w) | Bi::Dv(w) => {
+            let is_u = matches!(f, Bi::Du(_));
+            let Some(ctx) = ctx else {
+                for c in 0..w {
+                    fr.set(d + c, k, F::c(0.0));
+                }
+                return;
+            };
+            let g = *ctx.globals();
+            for c in 0..w {
+                let x = fr.get(a(0) + c, k);
+                let v = if is_u { du(&g, x) } else { dv(&g, x) };
+                fr.set(d + c, k, v);
+            }
+        }
+        Bi::Deriv(w) => {
+            let Some(ctx) = ctx else { return };
+            let g = *ctx.globals();
+            let den = fr.get(a(1), k);
+            for c in 0..w {
+                let v = deriv(&g, fr.get(a(0) + c, k), den);
+                fr.set(d + c, k, v);
+            }
+        }
+        Bi::Area => {
+            let v = area(fr.vec3(a(0), k));
+            fr.set(d, k, v);
+        }
+        Bi::CalcNormal => {
+            let Some(ctx) = ctx else { return };
+            let g = *ctx.globals();
+            set3!(calculatenormal(&g, fr.vec3(a(0), k)));
+        }
+        Bi::FilterWidth(w) => {
+            let v = if w == 3 { filterwidth_point(fr.vec3(a(0), k)) } else { filterwidth(fr.get(a(0), k)) };
+            fr.set(d, k, v);
+        }
+        Bi::FilterStep(nnum) => {
+            let v = if nnum >= 3 {
+                // filterstep(edge, s0, s1): box over [s0, s1].
+                let (e, s0, s1) = (fr.get(a(0), k), fr.get(a(1), k), fr.get(a(2), k));
+                let lo = s0.min(s1);
+                let wdt = (s1 - s0).abs();
+                let t = clamp((lo + wdt - e) / wdt.max(F::c(1e-30)), F::c(0.0), F::c(1.0));
+                F::select(wdt.gt(F::c(0.0)), t, step(e, s0))
+            } else {
+                filterstep(fr.get(a(0), k), fr.get(a(1), k))
+            };
+            fr.set(d, k, v);
+        }
+        Bi::Noise { dims, out, signed } => {
+            let dm = domain(fr, args, dims, k);
+            if out == 1 {
+                let v = if signed { snoise(dm) } else { noise(dm) };
+                fr.set(d, k, v);
+            } else {
+                set3!(if signed { vsnoise(dm) } else { vnoise(dm) });
+            }
+        }
+        Bi::PNoise { dims, out, signed } => {
+            let half = args.len() / 2;
+            let dm = domain(fr, &args[..half], dims, k);
+            let per = domain(fr, &args[half..], dims, k);
+            if out == 1 {
+                let v = if signed { psnoise(dm, per) } else { pnoise(dm, per) };
+                fr.set(d, k, v);
+            } else {
+                let v = vpnoise(dm, per);
+                let v = if signed { v * F::c(2.0) - Vec3::splat(F::c(1.0)) } else { v };
+                set3!(v);
+            }
+        }
+        Bi::CellNoise { dims, out } => {
+            let dm = domain(fr, args, dims, k);
+            if out == 1 {
+                let v = cellnoise(dm);
+                fr.set(d, k, v);
+            } else {
+                set3!(vcellnoise(dm));
+            }
+        }
+        Bi::Fbm { dims } | Bi::Turbulence { dims } => {
+            let dm = domain(fr, args, dims, k);
+            let used = match dims {
+                1 | 3 => 1,
+                _ => 2,
+            };
+            let oct = args.get(used).map_or(6.0, |l| fr.get(l.off(), k).lane(0)).max(0.0) as u32;
+            let lac = args.get(used + 1).map_or(2.0, |l| fr.get(l.off(), k).lane(0));
+            let gain = args.get(used + 2).map_or(0.5, |l| fr.get(l.off(), k).lane(0));
+            let v = if matches!(f, Bi::Fbm { .. }) { fbm(dm, oct, lac, gain) } else { turbulence(dm, oct, lac, gain) };
+            fr.set(d, k, v);
+        }
+        Bi::Random(w) => {
+            // A per-point hash of the position (deterministic, so renders are repeatable).
+            let p = ctx.map_or_else(Vec3::zero, |c| c.globals().P);
+            for c in 0..w {
+                let v = cellnoise(NoiseDomain::D4(p * F::c(1.0e4), F::c(f64::from(c) + 0.5)));
+                fr.set(d + c, k, v);
+            }
+        }
+        Bi::Spline { w, n, array, basis } => {
+            let bname = if basis { space_str(fr, args[0]).to_string() } else { "catmullrom".to_string() };
+            let b = SplineBasis::from_name(&bname).unwrap_or(SplineBasis::CATMULL_ROM);
+            let first = usize::from(basis);
+            let x = fr.get(a(first), k);
+            let knot = |i: u32| -> u32 { if array { a(first + 1) + i * w } else { a(first + 1 + i as usize) } };
+            if w == 1 {
+                let knots: Vec<F> = (0..n).map(|i| fr.get(knot(i), k)).collect();
+                let v = spline(&b, x, &knots);
+                fr.set(d, k, v);
+            } else {
+                let knots: Vec<Vec3<F>> = (0..n).map(|i| fr.vec3(knot(i), k)).collect();
+                set3!(spline(&b, x, &knots));
+            }
+        }
+        Bi::Ambient => {
+            let v = match ctx {
+                Some(c) => c.ambient(&Exec::with_mask(m)),
+                None => Color::zero(),
+            };
+            setc!(v);
+        }
+        Bi::Diffuse => {
+            let v = match ctx {
+                Some(c) => diffuse(c, &mut Exec::with_mask(m), fr.vec3(a(0), k)),
+                None => Color::zero(),
+            };
+            setc!(v);
+        }
+        Bi::Specular => {
+            let v = match ctx {
+                Some(c) => specular(c, &mut Exec::with_mask(m), fr.vec3(a(0), k), fr.vec3(a(1), k), fr.get(a(2), k)),
+                None => Color::zero(),
+            };
+            setc!(v);
+        }
+        Bi::Phong => {
+            let v = match ctx {
+                Some(c) => phong(c, &mut Exec::with_mask(m), fr.vec3(a(0), k), fr.vec3(a(1), k), fr.get(a(2), k)),
+                None => Color::zero(),
+            };
+            setc!(v);
+        }
+        Bi::SpecularBrdf => {
+            let v = specularbrdf(fr.vec3(a(0), k), fr.vec3(a(1), k), fr.vec3(a(2), k), fr.get(a(3), k));
+            fr.set3(d, k, [v, v, v]);
+        }
+        Bi::Trace => {
+            let v = match ctx {
+                Some(c) => c.trace(&Exec::with_mask(m), fr.vec3(a(0), k), fr.vec3(a(1), k)),
+                None => Color::zero(),
+            };
+            setc!(v);
+        }
+        Bi::Texture { kind, out, coords } => {
+            let name = space_str(fr, args[0]).to_string();
+            let g = ctx.map(|c| *c.globals());
+            let cs: Vec<Loc> = args[1..1 + coords as usize].to_vec();
+            let v = texture::lookup(fr, &name, kind, &cs, g.as_ref(), k);
+            if out == 1 {
+                fr.set(d, k, v.r);
+            } else {
+                setc!(v);
+            }
+        }
+        Bi::Concat => {
+            let s: String = args.iter().map(|l| space_str(fr, *l).to_string()).collect();
+            if let Loc::Str(i, _) = dst {
+                fr.s[i as usize] = s;
+            }
+        }
+        Bi::Format | Bi::Printf => {
+            let s = format_rsl(fr, args, k);
+            if matches!(f, Bi::Printf) {
+                if m.any() {
+                    print!("{s}");
+                }
+            } else if let Loc::Str(i, _) = dst {
+                fr.s[i as usize] = s;
+            }
+        }
+        Bi::Match => {
+            let pat = space_str(fr, args[0]).to_string();
+            let subj = space_str(fr, args[1]).to_string();
+            let v = F::c(if simple_match(&pat, &subj) { 1.0 } else { 0.0 });
+            fr.set(d, k, v);
+        }
+        Bi::Query => {
+            fr.set(d, k, F::c(0.0));
+        }
+        Bi::ShaderName => {}
+        Bi::Depth => {
+            let z = ctx.map_or(F::c(0.0), |c| c.globals().P.z);
+            fr.set(d, k, z);
+        }
+    }
+}
+
+/// `format`/`printf`: `%f %g %d %s %c %p %m %%` (numbers print lane 0; triples as `x y z`).
+fn format_rsl<F: ShadingFloat>(fr: &Frame<F>, args: &[Loc], k: usize) -> String {
+    let fmt = space_str(fr, args[0]).to_string();
+    let mut out = String::new();
+    let mut next = 1usize;
+    let mut chars = fmt.chars().peekable();
+    while let Some(c) = chars.next() {
+        if c != '%' {
+            out.push(c);
+            continue;
+        }
+        // Skip flags/width/precision.
+        let mut spec = String::new();
+        while let Some(&p) = chars.peek() {
+            if p.is_ascii_digit() || p == '.' || p == '-' || p == '+' {
+                spec.push(p);
+                chars.next();
+            } else {
+                break;
+            }
+        }
+        match chars.next() {
+            Some('%') => out.push('%'),
+            Some(_) => {
+                if let Some(l) = args.get(next) {
+                    match *l {
+                        Loc::Str(i, _) => out.push_str(&fr.s[i as usize]),
+                        Loc::Num { off, width } => {
+                            let parts: Vec<String> =
+                                (0..width).map(|c| format!("{}", fr.get(off + c, k).lane(0))).collect();
+                            out.push_str(&parts.join(" "));
+                        }
+                        _ => {}
+                    }
+                }
+                next += 1;
+            }
+            None => out.push('%'),
+        }
+    }
+    out
+}
+
+/// `match(pattern, subject)`: a substring search with `.` (any char), `^`/`$` anchors and
+/// `*` (repeat the previous char) — the subset of regular expressions shaders use.
+fn simple_match(pat: &str, subj: &str) -> bool {
+    fn here(p: &[char], s: &[char]) -> bool {
+        match p {
+            [] => true,
+            ['$'] => s.is_empty(),
+            [c, '*', rest @ ..] => {
+                let mut i = 0;
+                loop {
+                    if here(rest, &s[i..]) {
+                        return true;
+                    }
+                    if i < s.len() && (*c == '.' || s[i] == *c) {
+                        i += 1;
+                    } else {
+                        return false;
+                    }
+                }
+            }
+            [c, rest @ ..] => !s.is_empty() && (*c == '.' || s[0] == *c) && here(rest, &s[1..]),
+        }
+    }
+    let p: Vec<char> = pat.chars().collect();
+    let s: Vec<char> = subj.chars().collect();
+    if let Some(rest) = p.strip_prefix(&['^']) {
+        return here(rest, &s);
+    }
+    (0..=s.len()).any(|i| here(&p, &s[i..]))
+}

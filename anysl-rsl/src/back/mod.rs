@@ -1,0 +1,3 @@
+//! Back ends: the batched interpreter (run time, no LLVM) and generated Rust (build time).
+
+pub mod interp;
