@@ -123,14 +123,16 @@ impl<F: ShadingFloat> Mul for Dual<F> {
 
 impl<F: ShadingFloat> Div for Dual<F> {
     type Output = Self;
+    /// `(∂a - q·∂b) / b`; a derivative that is not finite (a divisor at or near 0, e.g. a
+    /// denormal whose reciprocal overflows) is 0.
     #[inline(always)]
     fn div(self, r: Self) -> Self {
         let q = self.val / r.val;
         let inv = F::c(1.0) / r.val;
         Self {
             val: q,
-            ddx: (self.ddx - q * r.ddx) * inv,
-            ddy: (self.ddy - q * r.ddy) * inv,
+            ddx: finite_or_zero((self.ddx - q * r.ddx) * inv),
+            ddy: finite_or_zero((self.ddy - q * r.ddy) * inv),
         }
     }
 }

@@ -5,7 +5,7 @@
 //! kept as distinct types because RSL keeps them distinct (a colour is not transformed by a
 //! matrix, a point is).
 
-use crate::float::{Blend, ShadingFloat};
+use crate::float::{Blend, Mask, ShadingFloat};
 use core::ops::{Add, AddAssign, Div, DivAssign, Index, Mul, MulAssign, Neg, Sub, SubAssign};
 
 macro_rules! triple {
@@ -285,6 +285,12 @@ impl<F: ShadingFloat> Vec3<F> {
     }
     /// Unit vector in the same direction; a zero-length vector stays zero (RSL practice;
     /// never NaN from a zero length).
+    ///
+    /// Stable at every finite magnitude: where the squared length would underflow (lose bits
+    /// to denormals, or round to 0 for a tiny non-zero vector) or overflow, the vector is first
+    /// scaled by its largest component (a rare path, taken only when some lane needs it). For
+    /// dual numbers, derivatives that overflow near the singular point (|v| → 0, where the
+    /// derivative grows like 1/|v|) are 0, as anysl-ad's policy for singular points says.
     #[inline(always)]
     #[must_use]
     pub fn normalize(self) -> Self {
@@ -293,7 +299,35 @@ impl<F: ShadingFloat> Vec3<F> {
         // The guard is computed beside the square root, off its latency chain: 1/√0 = inf is
         // replaced by 0 (as is a NaN length).
         let inv = F::c(1.0) / l2.sqrt();
-        self * F::select(l2.gt(zero), inv, zero)
+        let unit = self * F::select(l2.gt(zero), inv, zero);
+        // Squared lengths with a full-precision normal representation and room to spare.
+        let (lo, hi) = if F::UNIT_ROUNDOFF > 1e-12 {
+            (2f64.powi(-120), 2f64.powi(120))
+        } else {
+            (2f64.powi(-1000), 2f64.powi(1000))
+        };
+        let rescale = l2.lt(F::c(lo)) | l2.gt(F::c(hi));
+        let unit = if rescale.any() {
+            Self::select(rescale, self.normalize_rescaled(), unit)
+        } else {
+            unit
+        };
+        if F::HAS_DERIVS {
+            unit.map(finite_derivatives)
+        } else {
+            unit
+        }
+    }
+    /// `normalize` through `self / max|component|` (the rare path of [`Vec3::normalize`]).
+    #[inline(never)]
+    fn normalize_rescaled(self) -> Self {
+        let zero = F::c(0.0);
+        // The scale is a constant for the derivatives: normalize(v/m) = normalize(v).
+        let m = self.x.abs().max(self.y.abs()).max(self.z.abs()).value();
+        let usable = m.gt(zero) & m.lt(F::c(f64::INFINITY));
+        let w = self / F::select(usable, m, F::c(1.0));
+        let l2 = w.dot(w);
+        w * F::select(l2.gt(zero), F::c(1.0) / l2.sqrt(), zero)
     }
     /// The same triple as a colour.
     #[inline(always)]
@@ -542,4 +576,12 @@ impl<F: ShadingFloat, T: Blend<F>, const N: usize> Blend<F> for [T; N] {
     fn widen(self) -> Self {
         self.map(Blend::widen)
     }
+}
+
+/// `x` with every derivative that is not finite replaced by 0 (anysl-ad's policy at singular
+/// points; the identity for types without derivatives).
+#[inline(always)]
+fn finite_derivatives<F: ShadingFloat>(x: F) -> F {
+    let finite_or_zero = |d: F| F::select(d.abs().lt(F::c(f64::INFINITY)), d, F::c(0.0));
+    x.with_derivs(finite_or_zero(x.dx()), finite_or_zero(x.dy()))
 }

@@ -6,14 +6,16 @@
 //! vectorizes and needs no memory. Lattice coordinates are the `i32` bit patterns of
 //! `floor(x)`: the hash sees exact integers at any magnitude (no float-multiply hash that
 //! loses bits at 1e7), and the fractional part is taken before hashing, so detail is kept
-//! wherever the input precision has it.
+//! wherever the input precision has it. Coordinates beyond ±2^31 are first reduced modulo the
+//! hash period 2^32 (exactly), so noise is periodic with that period on every axis instead of
+//! collapsing where `floor` leaves the i32 range (30-octave fBm reaches 2^31 at |x| ≈ 4).
 //!
 //! RSL conventions: `noise` is in [0, 1] (0.5 + 0.5·perlin), `snoise` in [-1, 1], `cellnoise`
 //! is constant on unit cells with values in [0, 1), `pnoise` repeats with a given period.
 //! Non-finite coordinates give the lattice-point value (noise 0.5, snoise 0), never NaN.
 
 use super::math::{clamp, fmod};
-use crate::float::{LatticeBits, ShadingFloat};
+use crate::float::{LatticeBits, Mask, ShadingFloat};
 use crate::vec::{Color, Vec3};
 
 /// Hash multipliers per lattice axis (x, y, z, w) and for the seed.
@@ -74,10 +76,30 @@ fn lerp<F: ShadingFloat>(t: F, a: F, b: F) -> F {
     a + t * (b - a)
 }
 
+/// The period of the lattice hash along each axis: it sees lattice coordinates as u32.
+const HASH_PERIOD: f64 = 4_294_967_296.0;
+
+/// `x` reduced modulo the hash period into [-2^31, 2^31] (`x - 2^32·round(x/2^32)`, exact in
+/// binary floating point), so that `floor` of it is a valid i32 whose bits are those of
+/// `floor(x)` modulo 2^32 — what the hash would see with unbounded integers — and its fraction
+/// is that of `x`. Without it, lattice coordinates beyond ±2^31 saturate and every cell there
+/// hashes alike. Taken only when some lane needs it; the identity (bit for bit) elsewhere.
+#[inline(always)]
+fn reduce_to_hash_period<F: ShadingFloat>(x: F) -> F {
+    let big = x.abs().ge(F::c(HASH_PERIOD * 0.5));
+    if big.any() {
+        let r = x - F::c(HASH_PERIOD) * (x * F::c(1.0 / HASH_PERIOD)).round();
+        F::select(big, r, x)
+    } else {
+        x
+    }
+}
+
 /// Lattice cell of one coordinate: `(floor as float, fraction, bits of floor, bits of floor+1)`,
 /// optionally wrapping the lattice with period `p` (`pnoise`).
 #[inline(always)]
 fn cell<F: ShadingFloat>(x: F, period: Option<F>) -> (F, F::Bits, F::Bits) {
+    let x = reduce_to_hash_period(x);
     let xf = x.floor();
     let f = x - xf;
     match period {
@@ -294,7 +316,7 @@ pub fn vpnoise<F: ShadingFloat>(d: NoiseDomain<F>, period: NoiseDomain<F>) -> Ve
 /// Lattice bits of a domain's cell.
 #[inline(always)]
 fn cell_bits<F: ShadingFloat>(d: NoiseDomain<F>) -> ([F::Bits; 4], usize) {
-    let b = |x: F| x.floor_bits();
+    let b = |x: F| reduce_to_hash_period(x).floor_bits();
     let zero = F::Bits::splat(0);
     match d {
         NoiseDomain::D1(x) => ([b(x), zero, zero, zero], 1),
