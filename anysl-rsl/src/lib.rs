@@ -7,11 +7,11 @@
 //! code over structured control flow) → passes → back ends.
 pub use anysl_core as core;
 
+pub mod back;
 pub mod builtins;
 pub mod diag;
 pub mod front;
 pub mod ir;
-pub mod back;
 pub mod passes;
 pub mod span;
 pub mod types;

@@ -286,7 +286,9 @@ pub enum Op {
         name: String,
         /// Index of the overload in the built-in table.
         overload: u32,
-        /// Slots receiving output arguments, in argument order (`None` for inputs).
+        /// One entry per source argument, in argument order: the slot an `output` argument
+        /// writes, `None` for an input. [`Inst::args`] holds the input arguments only, in
+        /// order, each already converted to the overload's parameter type.
         outputs: Vec<Option<SlotId>>,
     },
 }
@@ -345,6 +347,8 @@ pub enum Node {
         step: Block,
     },
     /// Leaves the `.0 + 1`-th enclosing loop (0 = innermost) — RSL `break n` is `Break(n - 1)`.
+    /// An [`Node::Illuminance`] body counts as a loop (over the lights): `break` inside it
+    /// stops visiting lights, `continue` goes on with the next light.
     Break(u32),
     /// Continues the `.0 + 1`-th enclosing loop.
     Continue(u32),
@@ -415,6 +419,11 @@ pub struct ParamMeta {
     pub output: bool,
     /// The slot holding it in [`Function::slots`].
     pub slot: SlotId,
+    /// For a point-like default written in a named space (`point "shader" (0, 0, 0)`): that
+    /// space. The default then holds the coordinates *in that space*; the renderer transforms
+    /// them to "current" when it binds the instance (as RenderMan does). `None`: current space.
+    /// (Colour defaults in a named colour space are converted to RGB at compile time.)
+    pub space: Option<String>,
     /// Declaration.
     pub span: Span,
 }
@@ -610,10 +619,40 @@ impl Op {
 /// Built-ins whose result depends on more than their arguments (the renderer, the lights, the
 /// derivatives of the arguments, a random stream, or a side effect): never folded.
 pub const CONTEXT_BUILTINS: &[&str] = &[
-    "printf", "random", "trace", "texture", "environment", "shadow", "ambient", "diffuse", "specular",
-    "specularbrdf", "phong", "atmosphere", "displacement", "lightsource", "surface", "incident", "opposite",
-    "attribute", "option", "rendererinfo", "textureinfo", "depth", "Du", "Dv", "Deriv", "area", "calculatenormal",
-    "filterwidth", "filterstep", "shadername", "transform", "vtransform", "ntransform", "ctransform",
+    "printf",
+    "random",
+    "trace",
+    "texture",
+    "environment",
+    "shadow",
+    "ambient",
+    "diffuse",
+    "specular",
+    "specularbrdf",
+    "phong",
+    "atmosphere",
+    "displacement",
+    "lightsource",
+    "surface",
+    "incident",
+    "opposite",
+    "attribute",
+    "option",
+    "rendererinfo",
+    "textureinfo",
+    "depth",
+    "Du",
+    "Dv",
+    "Deriv",
+    "area",
+    "calculatenormal",
+    "filterwidth",
+    "filterstep",
+    "shadername",
+    "transform",
+    "vtransform",
+    "ntransform",
+    "ctransform",
 ];
 
 /// Built-ins that need the derivatives of (some of) their arguments.

@@ -321,7 +321,15 @@ fn eval_builtin(name: &str, base: BaseType, args: &[Const]) -> Option<Const> {
         "floor" => f1(f64::floor),
         "ceil" => f1(f64::ceil),
         "round" => f1(f64::round),
-        "sign" => f1(|x| if x > 0.0 { 1.0 } else if x < 0.0 { -1.0 } else { 0.0 }),
+        "sign" => f1(|x| {
+            if x > 0.0 {
+                1.0
+            } else if x < 0.0 {
+                -1.0
+            } else {
+                0.0
+            }
+        }),
         "pow" => Some(Const::Float(scalar(0)?.powf(scalar(1)?))),
         "mod" => {
             let (x, y) = (scalar(0)?, scalar(1)?);

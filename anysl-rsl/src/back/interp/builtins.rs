@@ -90,22 +90,46 @@ pub enum Bi {
     CalcNormal,
     FilterWidth(u32),
     FilterStep(u32),
-    Noise { dims: u8, out: u32, signed: bool },
-    PNoise { dims: u8, out: u32, signed: bool },
-    CellNoise { dims: u8, out: u32 },
-    Fbm { dims: u8 },
-    Turbulence { dims: u8 },
+    Noise {
+        dims: u8,
+        out: u32,
+        signed: bool,
+    },
+    PNoise {
+        dims: u8,
+        out: u32,
+        signed: bool,
+    },
+    CellNoise {
+        dims: u8,
+        out: u32,
+    },
+    Fbm {
+        dims: u8,
+    },
+    Turbulence {
+        dims: u8,
+    },
     Random(u32),
     /// `spline([basis,] x, knots…)`: element width, number of knots, knots given as an array,
     /// basis string argument present.
-    Spline { w: u32, n: u32, array: bool, basis: bool },
+    Spline {
+        w: u32,
+        n: u32,
+        array: bool,
+        basis: bool,
+    },
     Ambient,
     Diffuse,
     Specular,
     SpecularBrdf,
     Phong,
     Trace,
-    Texture { kind: texture::Kind, out: u32, coords: u32 },
+    Texture {
+        kind: texture::Kind,
+        out: u32,
+        coords: u32,
+    },
     Concat,
     Format,
     Printf,
@@ -194,8 +218,8 @@ pub fn resolve(
         "setzcomp" => Bi::SetXcomp(2),
         "comp" if ty(0) == B::Matrix => Bi::MComp,
         "comp" => Bi::Comp(w(ty(0))),
-        "setcomp" if ty(0) == B::Matrix => Bi::MSetComp,
-        "setcomp" => Bi::SetComp(w(ty(0))),
+        "setcomp" if _outs.first().copied().flatten().is_some_and(|o| o.0 == B::Matrix) => Bi::MSetComp,
+        "setcomp" => Bi::SetComp(3),
         "transform" | "vtransform" | "ntransform" => {
             let xf = match (name, ret) {
                 ("vtransform", _) | (_, B::Vector) => Xf::Vector,
@@ -222,8 +246,8 @@ pub fn resolve(
             Bi::PNoise { dims: dims(&args[..half])?, out: rw, signed: name == "psnoise" }
         }
         "cellnoise" => Bi::CellNoise { dims: dims(args)?, out: rw },
-        "fbm" => Bi::Fbm { dims: dims(&args[..args.iter().position(|a| a.0 == B::Float && n > 1).map_or(n, |_| 1)])? },
-        "turbulence" => Bi::Turbulence { dims: dims(&args[..1])? },
+        "fbm" => Bi::Fbm { dims: if ty(0).is_triple() { 3 } else { 1 } },
+        "turbulence" => Bi::Turbulence { dims: if ty(0).is_triple() { 3 } else { 1 } },
         "random" => Bi::Random(rw),
         "spline" => {
             let basis = ty(0) == B::String;
@@ -405,11 +429,7 @@ pub fn call<F: ShadingFloat, C: ShadingContext<F>>(
             fr.set(d, k, v);
         }
         Bi::Faceforward(three) => {
-            let nref = if three {
-                fr.vec3(a(2), k)
-            } else {
-                ctx.map_or_else(|| fr.vec3(a(0), k), |c| c.globals().Ng)
-            };
+            let nref = if three { fr.vec3(a(2), k) } else { ctx.map_or_else(|| fr.vec3(a(0), k), |c| c.globals().Ng) };
             set3!(faceforward(fr.vec3(a(0), k), fr.vec3(a(1), k), nref));
         }
         Bi::Reflect => set3!(reflect(fr.vec3(a(0), k), fr.vec3(a(1), k))),
@@ -434,9 +454,10 @@ pub fn call<F: ShadingFloat, C: ShadingContext<F>>(
         }
         Bi::SetComp(_) => {
             // setcomp(output c, i, x): the first argument is the output slot.
+            // setcomp(output c, i, x): the inputs are (i, x).
             if let Some(Some(l)) = outs.first() {
-                let i = fr.get(a(1), k).floor();
-                let x = fr.get(a(2), k);
+                let i = fr.get(a(0), k).floor();
+                let x = fr.get(a(1), k);
                 for c in 0..3u32 {
                     let hit = m & i.eq(F::c(f64::from(c)));
                     if hit.any() {
@@ -451,7 +472,7 @@ pub fn call<F: ShadingFloat, C: ShadingContext<F>>(
         }
         Bi::SetXcomp(c) => {
             if let Some(Some(l)) = outs.first() {
-                let x = fr.get(a(1), k);
+                let x = fr.get(a(0), k);
                 fr.write(l.off() + c, k, m, &[x]);
             }
         }
@@ -462,8 +483,8 @@ pub fn call<F: ShadingFloat, C: ShadingContext<F>>(
         }
         Bi::MSetComp => {
             if let Some(Some(l)) = outs.first() {
-                let (r, c) = (fr.get(a(1), k).lane(0) as u32, fr.get(a(2), k).lane(0) as u32);
-                let x = fr.get(a(3), k);
+                let (r, c) = (fr.get(a(0), k).lane(0) as u32, fr.get(a(1), k).lane(0) as u32);
+                let x = fr.get(a(2), k);
                 fr.write(l.off() + r.min(3) * 4 + c.min(3), k, m, &[x]);
             }
         }
@@ -620,7 +641,13 @@ pub fn call<F: ShadingFloat, C: ShadingContext<F>>(
             let b = SplineBasis::from_name(&bname).unwrap_or(SplineBasis::CATMULL_ROM);
             let first = usize::from(basis);
             let x = fr.get(a(first), k);
-            let knot = |i: u32| -> u32 { if array { a(first + 1) + i * w } else { a(first + 1 + i as usize) } };
+            let knot = |i: u32| -> u32 {
+                if array {
+                    a(first + 1) + i * w
+                } else {
+                    a(first + 1 + i as usize)
+                }
+            };
             if w == 1 {
                 let knots: Vec<F> = (0..n).map(|i| fr.get(knot(i), k)).collect();
                 let v = spline(&b, x, &knots);

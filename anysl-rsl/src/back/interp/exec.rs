@@ -97,7 +97,15 @@ fn take_frame<F: ShadingFloat>(p: &Program, n: usize) -> Frame<F> {
         pool.swap_remove(i).downcast::<Frame<F>>().ok()
     });
     let mut fr = cached.map_or_else(
-        || Frame { n, f: Vec::new(), m: Vec::new(), s: Vec::new(), loops: Vec::new(), rets: Vec::new(), widening: false },
+        || Frame {
+            n,
+            f: Vec::new(),
+            m: Vec::new(),
+            s: Vec::new(),
+            loops: Vec::new(),
+            rets: Vec::new(),
+            widening: false,
+        },
         |b| *b,
     );
     fr.n = n;
@@ -411,7 +419,16 @@ fn light_body<F: ShadingFloat, C: ShadingContext<F>>(
 
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
-fn store<F: ShadingFloat>(fr: &mut Frame<F>, dst: Loc, src: Loc, idx: Option<u32>, elem: u32, len: u32, k: usize, m: F::Mask) {
+fn store<F: ShadingFloat>(
+    fr: &mut Frame<F>,
+    dst: Loc,
+    src: Loc,
+    idx: Option<u32>,
+    elem: u32,
+    len: u32,
+    k: usize,
+    m: F::Mask,
+) {
     match (dst, src) {
         (Loc::Num { off, width }, Loc::Num { off: so, width: sw }) => match idx {
             None => {

@@ -17,4 +17,4 @@ mod prepare;
 pub mod texture;
 
 pub use exec::{run_batch, InterpLight, InterpShader};
-pub use prepare::{Program, PrepareError};
+pub use prepare::{PrepareError, Program};

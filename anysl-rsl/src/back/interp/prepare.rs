@@ -139,7 +139,14 @@ pub enum CNode {
     /// Inlined function.
     Frame(Vec<CNode>),
     /// Light loop of a surface shader.
-    Illuminance { cat: Option<u32>, p: u32, cone: Option<(u32, u32)>, body: Vec<CNode>, l: Option<u32>, cl: Option<u32> },
+    Illuminance {
+        cat: Option<u32>,
+        p: u32,
+        cone: Option<(u32, u32)>,
+        body: Vec<CNode>,
+        l: Option<u32>,
+        cl: Option<u32>,
+    },
     /// `illuminate` in a light shader.
     Illuminate { p: u32, cone: Option<(u32, u32)>, body: Vec<CNode> },
     /// `solar` in a light shader.
@@ -344,7 +351,13 @@ impl Cx<'_> {
         let inst = self.m.func.inst(v);
         let dst = self.v(v);
         let arg = |i: usize| self.v(inst.args[i]);
-        let unsupported = || PrepareError(format!("{:?} on {:?}", inst.op, inst.args.iter().map(|a| self.m.func.inst(*a).ty.base).collect::<Vec<_>>()));
+        let unsupported = || {
+            PrepareError(format!(
+                "{:?} on {:?}",
+                inst.op,
+                inst.args.iter().map(|a| self.m.func.inst(*a).ty.base).collect::<Vec<_>>()
+            ))
+        };
         let code = match &inst.op {
             Op::Const(c) => {
                 match dst {
@@ -437,7 +450,9 @@ impl Cx<'_> {
                             _ => Cmp::Ge,
                         };
                         match (a, b) {
-                            (Loc::Str(a, _), Loc::Str(b, _)) => Code::CmpStr { ne: cmp == Cmp::Ne, dst: dst.off(), a, b },
+                            (Loc::Str(a, _), Loc::Str(b, _)) => {
+                                Code::CmpStr { ne: cmp == Cmp::Ne, dst: dst.off(), a, b }
+                            }
                             (Loc::Mask(a), Loc::Mask(b)) => Code::CmpMask { ne: cmp == Cmp::Ne, dst: dst.off(), a, b },
                             (Loc::Num { .. }, Loc::Num { .. }) if a.width() == b.width() => {
                                 Code::Cmp { op: cmp, dst: dst.off(), a: a.off(), b: b.off(), w: a.width() }
@@ -448,7 +463,9 @@ impl Cx<'_> {
                 }
             }
             Op::Select => match (arg(0), dst) {
-                (Loc::Mask(c), Loc::Num { off, width }) => Code::Select { dst: off, c, a: arg(1).off(), b: arg(2).off(), w: width },
+                (Loc::Mask(c), Loc::Num { off, width }) => {
+                    Code::Select { dst: off, c, a: arg(1).off(), b: arg(2).off(), w: width }
+                }
                 (Loc::Mask(c), Loc::Mask(d)) => Code::SelectMask { dst: d, c, a: arg(1).off(), b: arg(2).off() },
                 (Loc::Mask(c), Loc::Str(d, _)) => Code::SelectStr { dst: d, c, a: arg(1).off(), b: arg(2).off() },
                 _ => return Err(unsupported()),
@@ -467,7 +484,9 @@ impl Cx<'_> {
                     return Ok(());
                 }
                 (Loc::Num { off, width: 1 }, Loc::Num { off: d, width }) => Code::Splat { dst: d, src: off, w: width },
-                (Loc::Num { off, width: sw }, Loc::Num { off: d, width }) if sw == width => Code::Copy { dst: d, src: off, w: width },
+                (Loc::Num { off, width: sw }, Loc::Num { off: d, width }) if sw == width => {
+                    Code::Copy { dst: d, src: off, w: width }
+                }
                 (Loc::Num { off, width }, Loc::Mask(d)) => Code::ToMask { dst: d, a: off, w: width },
                 (Loc::Mask(m), Loc::Num { off, width: 1 }) => Code::FromMask { dst: off, a: m },
                 (Loc::Mask(m), Loc::Mask(d)) => Code::SelectMask { dst: d, c: m, a: m, b: m },
@@ -481,7 +500,9 @@ impl Cx<'_> {
                 return Ok(());
             }
             Op::FromSpace => {
-                let Loc::Str(space, _) = arg(0) else { return Err(unsupported()) };
+                let Loc::Str(space, _) = arg(0) else {
+                    return Err(unsupported());
+                };
                 Code::FromSpace { dst: dst.off(), space, src: arg(1).off(), color: inst.ty.base == BaseType::Color }
             }
             Op::Call { name, outputs, .. } => {
@@ -505,8 +526,9 @@ impl Cx<'_> {
                     .iter()
                     .map(|o| o.map(|s| (self.m.func.slot(s).ty.base, self.m.func.slot(s).ty.array)))
                     .collect();
-                let f = builtins::resolve(name, &arg_tys, &consts, &out_tys, inst.ty.base)
-                    .ok_or_else(|| PrepareError(format!("built-in `{name}` with arguments {arg_tys:?} returning {}", inst.ty.base)))?;
+                let f = builtins::resolve(name, &arg_tys, &consts, &out_tys, inst.ty.base).ok_or_else(|| {
+                    PrepareError(format!("built-in `{name}` with arguments {arg_tys:?} returning {}", inst.ty.base))
+                })?;
                 Code::Call {
                     f,
                     dst,
