@@ -327,14 +327,7 @@ impl fmt::Display for TokenKind {
 /// and the lexical errors, both in source order.
 #[must_use]
 pub fn lex(text: &str, file: FileId) -> (Vec<Token>, Vec<Diagnostic>) {
-    let mut lx = Lexer {
-        text,
-        bytes: text.as_bytes(),
-        pos: 0,
-        file,
-        tokens: Vec::new(),
-        diags: Vec::new(),
-    };
+    let mut lx = Lexer { text, bytes: text.as_bytes(), pos: 0, file, tokens: Vec::new(), diags: Vec::new() };
     lx.run();
     (lx.tokens, lx.diags)
 }
@@ -437,12 +430,7 @@ impl Lexer<'_> {
             let kind = self.token();
             if let Some(kind) = kind {
                 let span = self.span(start, self.pos);
-                self.tokens.push(Token {
-                    kind,
-                    span,
-                    line_start,
-                    space_before,
-                });
+                self.tokens.push(Token { kind, span, line_start, space_before });
                 line_start = false;
                 space_before = false;
             } else {
@@ -517,13 +505,7 @@ impl Lexer<'_> {
                         '\'' => "RSL strings use double quotes",
                         _ => "this character cannot start a token",
                     };
-                    self.error(
-                        codes::BAD_CHAR,
-                        start,
-                        self.pos,
-                        format!("unexpected character {ch:?}"),
-                        hint,
-                    );
+                    self.error(codes::BAD_CHAR, start, self.pos, format!("unexpected character {ch:?}"), hint);
                     return None;
                 }
             },
@@ -593,13 +575,7 @@ impl Lexer<'_> {
                 self.pos += 1;
             }
             let text = &self.text[start..self.pos];
-            self.error(
-                codes::BAD_NUMBER,
-                start,
-                self.pos,
-                format!("malformed number `{text}`"),
-                "not a number",
-            );
+            self.error(codes::BAD_NUMBER, start, self.pos, format!("malformed number `{text}`"), "not a number");
         }
         TokenKind::Number(v)
     }
@@ -693,11 +669,7 @@ mod tests {
     fn dot_between_names_is_an_operator() {
         assert_eq!(
             kinds("L.N"),
-            vec![
-                TokenKind::Ident("L".into()),
-                TokenKind::Punct(Punct::Dot),
-                TokenKind::Ident("N".into())
-            ]
+            vec![TokenKind::Ident("L".into()), TokenKind::Punct(Punct::Dot), TokenKind::Ident("N".into())]
         );
     }
 

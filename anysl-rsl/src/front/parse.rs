@@ -41,33 +41,15 @@ pub fn parse_tokens(tokens: &[Token], diags: &mut Diagnostics) -> Unit {
     let toks = if tokens.last().is_some_and(|t| t.kind == TokenKind::Eof) {
         tokens
     } else {
-        let span = tokens
-            .last()
-            .map_or(Span::DUMMY, |t| Span::new(t.span.file, t.span.end, t.span.end));
+        let span = tokens.last().map_or(Span::DUMMY, |t| Span::new(t.span.file, t.span.end, t.span.end));
         let mut v = tokens.to_vec();
-        v.push(Token {
-            kind: TokenKind::Eof,
-            span,
-            line_start: true,
-            space_before: true,
-        });
+        v.push(Token { kind: TokenKind::Eof, span, line_start: true, space_before: true });
         owned = v;
         &owned[..]
     };
-    let mut p = Parser {
-        toks,
-        pos: 0,
-        diags,
-        next_id: 0,
-        depth: 0,
-        too_deep: false,
-        last_error_pos: usize::MAX,
-    };
+    let mut p = Parser { toks, pos: 0, diags, next_id: 0, depth: 0, too_deep: false, last_error_pos: usize::MAX };
     let items = p.unit();
-    Unit {
-        items,
-        expr_count: p.next_id,
-    }
+    Unit { items, expr_count: p.next_id }
 }
 
 /// An error was reported; the caller recovers.
@@ -163,11 +145,7 @@ impl Parser<'_, '_> {
     }
 
     fn mk(&mut self, kind: ExprKind, span: Span) -> Expr {
-        Expr {
-            id: self.next_id(),
-            kind,
-            span,
-        }
+        Expr { id: self.next_id(), kind, span }
     }
 
     // ---- errors -------------------------------------------------------------------------------
@@ -178,12 +156,8 @@ impl Parser<'_, '_> {
         let t = self.peek().clone();
         if t.kind == TokenKind::Eof {
             self.report(
-                Diagnostic::error(
-                    codes::UNEXPECTED_EOF,
-                    t.span,
-                    format!("unexpected end of file: expected {what}"),
-                )
-                .with_label("the file ends here"),
+                Diagnostic::error(codes::UNEXPECTED_EOF, t.span, format!("unexpected end of file: expected {what}"))
+                    .with_label("the file ends here"),
             );
         } else {
             self.report(
@@ -221,13 +195,9 @@ impl Parser<'_, '_> {
         if self.depth > MAX_NESTING {
             let span = self.peek().span;
             self.report(
-                Diagnostic::error(
-                    codes::SYNTAX,
-                    span,
-                    format!("nesting too deep (more than {MAX_NESTING} levels)"),
-                )
-                .with_label("the limit is reached here")
-                .with_note("split the expression or statement into smaller pieces"),
+                Diagnostic::error(codes::SYNTAX, span, format!("nesting too deep (more than {MAX_NESTING} levels)"))
+                    .with_label("the limit is reached here")
+                    .with_note("split the expression or statement into smaller pieces"),
             );
             self.too_deep = true;
             self.pos = self.toks.len() - 1;
@@ -348,13 +318,7 @@ impl Parser<'_, '_> {
                 let params = self.params(true)?;
                 let body = self.block()?;
                 let span = t.span.to(body.span);
-                Ok(Item::Shader(ShaderDef {
-                    kind,
-                    name,
-                    params,
-                    body,
-                    span,
-                }))
+                Ok(Item::Shader(ShaderDef { kind, name, params, body, span }))
             }
             TokenKind::Keyword(K::Uniform | K::Varying) => Ok(Item::Function(self.function()?)),
             TokenKind::Keyword(k) if type_keyword(*k).is_some() => {
@@ -402,11 +366,7 @@ impl Parser<'_, '_> {
     fn function(&mut self) -> PResult<FunctionDef> {
         let start = self.peek().span;
         let ret = if matches!(self.peek().kind, TokenKind::Ident(_)) {
-            TypeSpec {
-                detail: None,
-                base: BaseType::Void,
-                span: start,
-            }
+            TypeSpec { detail: None, base: BaseType::Void, span: start }
         } else {
             self.type_spec()?
         };
@@ -414,13 +374,7 @@ impl Parser<'_, '_> {
         let params = self.params(false)?;
         let body = self.block()?;
         let span = start.to(body.span);
-        Ok(FunctionDef {
-            ret,
-            name,
-            params,
-            body,
-            span,
-        })
+        Ok(FunctionDef { ret, name, params, body, span })
     }
 
     fn ident(&mut self, what: &str) -> PResult<Ident> {
@@ -486,14 +440,7 @@ impl Parser<'_, '_> {
                         .with_note(format!("write e.g. `{} {} = 0`", ty.base, name.name)),
                     );
                 }
-                params.push(Param {
-                    output,
-                    ty: ty.clone(),
-                    name,
-                    array,
-                    default,
-                    span,
-                });
+                params.push(Param { output, ty: ty.clone(), name, array, default, span });
                 if self.at(P::Comma) {
                     self.bump();
                     if self.starts_formal() {
@@ -533,10 +480,7 @@ impl Parser<'_, '_> {
         loop {
             if self.at(P::RBrace) {
                 let close = self.bump().span;
-                return Ok(Block {
-                    stmts,
-                    span: open.to(close),
-                });
+                return Ok(Block { stmts, span: open.to(close) });
             }
             if self.at_eof() {
                 let span = self.peek().span;
@@ -591,10 +535,7 @@ impl Parser<'_, '_> {
             TokenKind::Keyword(K::While) => {
                 self.bump();
                 let cond = self.paren_cond("while")?;
-                StmtKind::While {
-                    cond,
-                    body: Box::new(self.stmt()?),
-                }
+                StmtKind::While { cond, body: Box::new(self.stmt()?) }
             }
             TokenKind::Keyword(K::For) => {
                 self.bump();
@@ -613,12 +554,7 @@ impl Parser<'_, '_> {
                 self.expect(P::Semi, "`;` after the `for` condition")?;
                 let step = if self.at(P::RParen) { None } else { Some(self.expr()?) };
                 self.expect(P::RParen, "`)` to close the `for` header")?;
-                StmtKind::For {
-                    init,
-                    cond,
-                    step,
-                    body: Box::new(self.stmt()?),
-                }
+                StmtKind::For { init, cond, step, body: Box::new(self.stmt()?) }
             }
             TokenKind::Keyword(k @ (K::Break | K::Continue)) => {
                 self.bump();
@@ -663,11 +599,7 @@ impl Parser<'_, '_> {
                     n => return Err(self.arg_count_error(span, "illuminate", "1 or 3", n)),
                 };
                 let Some(position) = args.pop() else { return Err(Fail) };
-                StmtKind::Illuminate {
-                    position,
-                    cone,
-                    body: Box::new(self.stmt()?),
-                }
+                StmtKind::Illuminate { position, cone, body: Box::new(self.stmt()?) }
             }
             TokenKind::Keyword(K::Solar) => {
                 self.bump();
@@ -680,10 +612,7 @@ impl Parser<'_, '_> {
                     }
                     n => return Err(self.arg_count_error(span, "solar", "0 or 2", n)),
                 };
-                StmtKind::Solar {
-                    cone,
-                    body: Box::new(self.stmt()?),
-                }
+                StmtKind::Solar { cone, body: Box::new(self.stmt()?) }
             }
             TokenKind::Keyword(K::Gather) => {
                 self.bump();
@@ -719,10 +648,7 @@ impl Parser<'_, '_> {
                 StmtKind::Expr(e)
             }
         };
-        Ok(Stmt {
-            kind,
-            span: start.to(self.prev_span()),
-        })
+        Ok(Stmt { kind, span: start.to(self.prev_span()) })
     }
 
     /// `name ( … ) {` — a nested function definition without a return type.
@@ -775,13 +701,7 @@ impl Parser<'_, '_> {
             let params = self.params(false)?;
             let body = self.block()?;
             let span = ty.span.to(body.span);
-            return Ok(StmtKind::Function(Box::new(FunctionDef {
-                ret: ty,
-                name,
-                params,
-                body,
-                span,
-            })));
+            return Ok(StmtKind::Function(Box::new(FunctionDef { ret: ty, name, params, body, span })));
         }
         let mut vars = Vec::new();
         loop {
@@ -795,12 +715,7 @@ impl Parser<'_, '_> {
             };
             let init = if self.eat(P::Assign) { Some(self.expr()?) } else { None };
             let span = name.span.to(self.prev_span());
-            vars.push(Declarator {
-                name,
-                array,
-                init,
-                span,
-            });
+            vars.push(Declarator { name, array, init, span });
             if !self.eat(P::Comma) {
                 break;
             }
@@ -826,12 +741,8 @@ impl Parser<'_, '_> {
     #[cold]
     fn arg_count_error(&mut self, span: Span, what: &str, want: &str, got: usize) -> Fail {
         self.report(
-            Diagnostic::error(
-                codes::SYNTAX,
-                span,
-                format!("`{what}` takes {want} arguments, not {got}"),
-            )
-            .with_label("wrong number of arguments"),
+            Diagnostic::error(codes::SYNTAX, span, format!("`{what}` takes {want} arguments, not {got}"))
+                .with_label("wrong number of arguments"),
         );
         Fail
     }
@@ -869,12 +780,7 @@ impl Parser<'_, '_> {
             _ => None,
         };
         let _ = start;
-        Ok(StmtKind::Illuminance {
-            category,
-            position,
-            cone,
-            body: Box::new(self.stmt()?),
-        })
+        Ok(StmtKind::Illuminance { category, position, cone, body: Box::new(self.stmt()?) })
     }
 
     // ---- expressions --------------------------------------------------------------------------
@@ -998,14 +904,7 @@ impl Parser<'_, '_> {
                 };
                 let e = self.unary()?;
                 let span = t.span.to(e.span);
-                Ok(self.mk(
-                    ExprKind::Cast {
-                        to,
-                        space,
-                        expr: Box::new(e),
-                    },
-                    span,
-                ))
+                Ok(self.mk(ExprKind::Cast { to, space, expr: Box::new(e) }, span))
             }
             _ => self.postfix(),
         }
@@ -1053,10 +952,7 @@ impl Parser<'_, '_> {
             TokenKind::Ident(name) => {
                 self.bump();
                 if self.at(P::LParen) {
-                    self.call(Ident {
-                        name: name.clone(),
-                        span: t.span,
-                    })
+                    self.call(Ident { name: name.clone(), span: t.span })
                 } else {
                     Ok(self.mk(ExprKind::Name(name.clone()), t.span))
                 }
@@ -1064,10 +960,7 @@ impl Parser<'_, '_> {
             // `surface("Kd", x)`, `displacement(…)`: message-passing functions.
             TokenKind::Keyword(k) if shader_keyword(*k).is_some() && self.peek_at(1).is(P::LParen) => {
                 self.bump();
-                self.call(Ident {
-                    name: k.as_str().to_owned(),
-                    span: t.span,
-                })
+                self.call(Ident { name: k.as_str().to_owned(), span: t.span })
             }
             TokenKind::Punct(P::LParen) => {
                 self.bump();

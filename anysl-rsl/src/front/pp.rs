@@ -58,9 +58,7 @@ impl SourceLoader for FsLoader {
             Ok(_) => return Err("not a regular file".into()),
             Err(e) => return Err(e.to_string()),
         }
-        std::fs::read(path)
-            .map(|b| String::from_utf8_lossy(&b).into_owned())
-            .map_err(|e| e.to_string())
+        std::fs::read(path).map(|b| String::from_utf8_lossy(&b).into_owned()).map_err(|e| e.to_string())
     }
 }
 
@@ -117,12 +115,7 @@ pub fn preprocess(
     pp.run_file(main, 0);
     let len = u32::try_from(pp.sources.get(main).text.len()).unwrap_or(u32::MAX);
     let mut out = pp.out;
-    out.push(Token {
-        kind: TokenKind::Eof,
-        span: Span::new(main, len, len),
-        line_start: true,
-        space_before: true,
-    });
+    out.push(Token { kind: TokenKind::Eof, span: Span::new(main, len, len), line_start: true, space_before: true });
     out
 }
 
@@ -203,22 +196,17 @@ impl Pp<'_> {
     fn abort(&mut self, span: Span, what: &str) {
         if !self.aborted {
             self.aborted = true;
-            self.error(codes::PP_ERROR, span, format!("preprocessing stopped: {what}"))
-                .notes
-                .push(
-                    "this usually comes from a macro that expands to ever more copies of itself, or from a recursive \
+            self.error(codes::PP_ERROR, span, format!("preprocessing stopped: {what}")).notes.push(
+                "this usually comes from a macro that expands to ever more copies of itself, or from a recursive \
                  #include"
-                        .into(),
-                );
+                    .into(),
+            );
         }
     }
 
     fn run_file(&mut self, file: FileId, depth: usize) {
         let (toks, lex_diags) = lex(&self.sources.get(file).text, file);
-        let mut lexd = LexDiags {
-            items: lex_diags,
-            next: 0,
-        };
+        let mut lexd = LexDiags { items: lex_diags, next: 0 };
         let mut conds: Vec<Cond> = Vec::new();
         let mut i = 0;
         while i < toks.len() && !self.aborted {
@@ -249,13 +237,7 @@ impl Pp<'_> {
             lexd.flush(end, active, self.diags);
             if active {
                 let empty: HideSet = Rc::new(Vec::new());
-                let run: Vec<PTok> = toks[i..j]
-                    .iter()
-                    .map(|t| PTok {
-                        tok: t.clone(),
-                        hide: empty.clone(),
-                    })
-                    .collect();
+                let run: Vec<PTok> = toks[i..j].iter().map(|t| PTok { tok: t.clone(), hide: empty.clone() }).collect();
                 let expanded = self.expand(run, 0);
                 for p in expanded {
                     if self.out.len() >= MAX_OUTPUT_TOKENS {
@@ -285,12 +267,7 @@ impl Pp<'_> {
         match name {
             "if" | "ifdef" | "ifndef" => {
                 if !active {
-                    conds.push(Cond {
-                        active: false,
-                        done: true,
-                        seen_else: false,
-                        span,
-                    });
+                    conds.push(Cond { active: false, done: true, seen_else: false, span });
                     return;
                 }
                 let v = match name {
@@ -306,12 +283,7 @@ impl Pp<'_> {
                         defined == (name == "ifdef")
                     }
                 };
-                conds.push(Cond {
-                    active: v,
-                    done: v,
-                    seen_else: false,
-                    span,
-                });
+                conds.push(Cond { active: v, done: v, seen_else: false, span });
             }
             "elif" | "else" => {
                 let Some(c) = conds.last() else {
@@ -376,10 +348,9 @@ impl Pp<'_> {
     /// The source text of a directive's arguments (for `#error`).
     fn rest_of_line(&self, args: &[Token]) -> String {
         match (args.first(), args.last()) {
-            (Some(a), Some(b)) if a.span.file == b.span.file => self
-                .sources
-                .snippet(Span::new(a.span.file, a.span.start, b.span.end))
-                .to_owned(),
+            (Some(a), Some(b)) if a.span.file == b.span.file => {
+                self.sources.snippet(Span::new(a.span.file, a.span.start, b.span.end)).to_owned()
+            }
             _ => String::new(),
         }
     }
@@ -390,11 +361,7 @@ impl Pp<'_> {
             return;
         };
         let Some(name) = name_tok.word() else {
-            self.error(
-                codes::BAD_DIRECTIVE,
-                name_tok.span,
-                format!("expected a macro name, found {}", name_tok.kind),
-            );
+            self.error(codes::BAD_DIRECTIVE, name_tok.span, format!("expected a macro name, found {}", name_tok.kind));
             return;
         };
         let name = name.to_owned();
@@ -435,14 +402,7 @@ impl Pp<'_> {
         }
         let id = self.next_macro_id;
         self.next_macro_id = self.next_macro_id.wrapping_add(1);
-        self.macros.insert(
-            name,
-            Macro {
-                id,
-                params,
-                body: rest.to_vec(),
-            },
-        );
+        self.macros.insert(name, Macro { id, params, body: rest.to_vec() });
     }
 
     fn include(&mut self, span: Span, args: &[Token], file: FileId, depth: usize) {
@@ -455,13 +415,7 @@ impl Pp<'_> {
             args
         } else {
             let empty: HideSet = Rc::new(Vec::new());
-            let run = args
-                .iter()
-                .map(|t| PTok {
-                    tok: t.clone(),
-                    hide: empty.clone(),
-                })
-                .collect();
+            let run = args.iter().map(|t| PTok { tok: t.clone(), hide: empty.clone() }).collect();
             expanded = self.expand(run, 0).into_iter().map(|p| p.tok).collect::<Vec<_>>();
             &expanded[..]
         };
@@ -485,9 +439,7 @@ impl Pp<'_> {
                 return;
             }
         };
-        let name_span = args
-            .first()
-            .map_or(span, |t| span.to(t.span).to(args[args.len() - 1].span));
+        let name_span = args.first().map_or(span, |t| span.to(t.span).to(args[args.len() - 1].span));
         if self.includes_disabled {
             return;
         }
@@ -509,12 +461,7 @@ impl Pp<'_> {
         }
         // Search order: the including file's directory, then the -I directories.
         let src = self.sources.get(file);
-        let own_dir = src
-            .path
-            .clone()
-            .unwrap_or_else(|| PathBuf::from(&src.name))
-            .parent()
-            .map(Path::to_path_buf);
+        let own_dir = src.path.clone().unwrap_or_else(|| PathBuf::from(&src.name)).parent().map(Path::to_path_buf);
         let mut candidates = Vec::new();
         let rel = Path::new(&name);
         if rel.is_absolute() {
@@ -529,20 +476,14 @@ impl Pp<'_> {
                 return;
             }
             if let Ok(text) = self.loader.load(path) {
-                let id = self
-                    .sources
-                    .add(path.to_string_lossy().into_owned(), Some(path.clone()), text);
+                let id = self.sources.add(path.to_string_lossy().into_owned(), Some(path.clone()), text);
                 self.file_cache.insert(path.clone(), id);
                 self.run_file(id, depth + 1);
                 return;
             }
         }
         let searched: Vec<String> = candidates.iter().map(|p| p.display().to_string()).collect();
-        let d = self.error(
-            codes::INCLUDE_NOT_FOUND,
-            name_span,
-            format!("cannot find include file `{name}`"),
-        );
+        let d = self.error(codes::INCLUDE_NOT_FOUND, name_span, format!("cannot find include file `{name}`"));
         d.notes.push(format!("searched: {}", searched.join(", ")));
         d.notes.push("add the directory with `-I DIR`".into());
     }
@@ -621,11 +562,7 @@ impl Pp<'_> {
                 self.error(
                     codes::MACRO_ARGS,
                     use_span.to(close),
-                    format!(
-                        "macro `{name}` takes {} argument(s) but {} were given",
-                        params.len(),
-                        args.len()
-                    ),
+                    format!("macro `{name}` takes {} argument(s) but {} were given", params.len(), args.len()),
                 );
                 continue;
             }
@@ -650,16 +587,8 @@ impl Pp<'_> {
             if bt.is(Punct::Hash) && mac.params.is_some() {
                 if let Some(p) = body.get(k + 1).and_then(|n| param_of(n)) {
                     let text = self.spelling(args.get(p).map_or(&[][..], |a| &a[..]));
-                    let tok = Token {
-                        kind: TokenKind::Str(text),
-                        span: at,
-                        line_start: false,
-                        space_before: true,
-                    };
-                    out.push(PTok {
-                        tok,
-                        hide: hide.clone(),
-                    });
+                    let tok = Token { kind: TokenKind::Str(text), span: at, line_start: false, space_before: true };
+                    out.push(PTok { tok, hide: hide.clone() });
                     k += 2;
                     continue;
                 }
@@ -669,20 +598,11 @@ impl Pp<'_> {
                 if let Some(next) = body.get(k + 1) {
                     let right: Vec<PTok> = match param_of(next) {
                         Some(p) => args.get(p).cloned().unwrap_or_default(),
-                        None => vec![PTok {
-                            tok: Token {
-                                span: at,
-                                ..next.clone()
-                            },
-                            hide: hide.clone(),
-                        }],
+                        None => vec![PTok { tok: Token { span: at, ..next.clone() }, hide: hide.clone() }],
                     };
                     if let Some(left) = out.pop() {
-                        let joined = format!(
-                            "{}{}",
-                            self.spelling(&[left]),
-                            self.spelling(&right[..right.len().min(1)])
-                        );
+                        let joined =
+                            format!("{}{}", self.spelling(&[left]), self.spelling(&right[..right.len().min(1)]));
                         out.extend(self.relex(&joined, at, hide));
                         out.extend(right.into_iter().skip(1));
                     }
@@ -709,10 +629,7 @@ impl Pp<'_> {
                 continue;
             }
             let tok = Token { span: at, ..bt.clone() };
-            out.push(PTok {
-                tok,
-                hide: hide.clone(),
-            });
+            out.push(PTok { tok, hide: hide.clone() });
             k += 1;
         }
         out
@@ -748,22 +665,9 @@ impl Pp<'_> {
     fn relex(&mut self, text: &str, at: Span, hide: &HideSet) -> Vec<PTok> {
         let (toks, errs) = lex(text, at.file);
         if !errs.is_empty() || toks.len() != 1 {
-            self.error(
-                codes::BAD_DIRECTIVE,
-                at,
-                format!("pasting with `##` gives `{text}`, which is not one token"),
-            );
+            self.error(codes::BAD_DIRECTIVE, at, format!("pasting with `##` gives `{text}`, which is not one token"));
         }
-        toks.into_iter()
-            .map(|t| PTok {
-                tok: Token {
-                    span: at,
-                    line_start: false,
-                    ..t
-                },
-                hide: hide.clone(),
-            })
-            .collect()
+        toks.into_iter().map(|t| PTok { tok: Token { span: at, line_start: false, ..t }, hide: hide.clone() }).collect()
     }
 
     // ---- #if expressions --------------------------------------------------------------------
@@ -786,20 +690,11 @@ impl Pp<'_> {
                     return false;
                 };
                 let v = if self.macros.contains_key(name) { 1.0 } else { 0.0 };
-                run.push(PTok {
-                    tok: Token {
-                        kind: TokenKind::Number(v),
-                        ..t.clone()
-                    },
-                    hide: empty.clone(),
-                });
+                run.push(PTok { tok: Token { kind: TokenKind::Number(v), ..t.clone() }, hide: empty.clone() });
                 k += len;
                 continue;
             }
-            run.push(PTok {
-                tok: t.clone(),
-                hide: empty.clone(),
-            });
+            run.push(PTok { tok: t.clone(), hide: empty.clone() });
             k += 1;
         }
         let toks: Vec<Token> = self.expand(run, 0).into_iter().map(|p| p.tok).collect();
@@ -807,30 +702,19 @@ impl Pp<'_> {
             self.error(codes::BAD_DIRECTIVE, span, "`#if` needs an expression");
             return false;
         }
-        let mut ev = CondEval {
-            toks: &toks,
-            pos: 0,
-            depth: 0,
-        };
+        let mut ev = CondEval { toks: &toks, pos: 0, depth: 0 };
         match ev.ternary() {
             Ok(v) if ev.pos == toks.len() => v != 0.0,
             Ok(_) => {
                 let at = toks[ev.pos].span;
-                self.error(
-                    codes::BAD_DIRECTIVE,
-                    at,
-                    format!("unexpected {} in `#if` expression", toks[ev.pos].kind),
-                );
+                self.error(codes::BAD_DIRECTIVE, at, format!("unexpected {} in `#if` expression", toks[ev.pos].kind));
                 false
             }
             Err(at) => {
                 let at = at.unwrap_or(span);
-                self.error(codes::BAD_DIRECTIVE, at, "malformed `#if` expression")
-                    .notes
-                    .push(
-                        "`#if` takes numbers, `defined(NAME)`, arithmetic, comparisons, `&&`, `||`, `!` and `?:`"
-                            .into(),
-                    );
+                self.error(codes::BAD_DIRECTIVE, at, "malformed `#if` expression").notes.push(
+                    "`#if` takes numbers, `defined(NAME)`, arithmetic, comparisons, `&&`, `||`, `!` and `?:`".into(),
+                );
                 false
             }
         }
