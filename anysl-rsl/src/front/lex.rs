@@ -685,7 +685,7 @@ mod tests {
         assert!(k.contains(&TokenKind::Keyword(Keyword::Surface)));
         assert!(k.contains(&TokenKind::Keyword(Keyword::Illuminance)));
         assert!(k.contains(&TokenKind::Punct(Punct::HashHash)));
-        assert_eq!(k.len(), 18);
+        assert_eq!(k.len(), 19);
     }
 
     #[test]
@@ -710,6 +710,6 @@ mod tests {
                 codes::UNTERMINATED_COMMENT
             ]
         );
-        assert_eq!(t.len(), 6);
+        assert_eq!(t.len(), 5);
     }
 }

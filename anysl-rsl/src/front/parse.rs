@@ -238,7 +238,8 @@ impl Parser<'_, '_> {
                 }
                 depth -= 1;
                 self.bump();
-                if depth == 0 && self.toks[start.min(self.toks.len() - 1)].is(P::LBrace) {
+                if depth == 0 {
+                    // A statement ending in a block (`illuminate(…) { … }`) ends here.
                     return;
                 }
                 continue;

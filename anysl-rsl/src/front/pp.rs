@@ -564,6 +564,9 @@ impl Pp<'_> {
                     use_span.to(close),
                     format!("macro `{name}` takes {} argument(s) but {} were given", params.len(), args.len()),
                 );
+                // A `0` stands for the bad call so the parser does not report it a second time.
+                let tok = Token { kind: TokenKind::Number(0.0), span: use_span.to(close), ..t.tok };
+                out.push(PTok { tok, hide: t.hide });
                 continue;
             }
             let body = self.substitute(&mac, &args, use_span.to(close), &hide, nesting);
