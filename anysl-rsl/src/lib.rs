@@ -9,9 +9,12 @@ pub use anysl_core as core;
 
 pub mod back;
 pub mod builtins;
+pub mod compile;
 pub mod diag;
 pub mod front;
 pub mod ir;
 pub mod passes;
 pub mod span;
 pub mod types;
+
+pub use compile::{compile_file, compile_source, CompileError, CompileOptions, Compiled};
