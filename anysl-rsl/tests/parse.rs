@@ -355,6 +355,16 @@ fn every_statement_form() {
 }
 
 #[test]
+fn unsized_local_arrays_take_the_initializer_length() {
+    let unit = parse_ok("surface s() { float a[] = {1, 2, 3}; }");
+    let StmtKind::Decl { vars, .. } = &body(&unit)[0].kind else { panic!() };
+    assert_eq!(vars[0].array, Some(3));
+    let (c, r) = errors("surface s() { float a[]; }");
+    assert_eq!(c, [codes::SYNTAX]);
+    assert!(r.contains("array `a` needs a length"), "{r}");
+}
+
+#[test]
 fn illuminance_with_message_passing_extras_warns() {
     let (unit, diags, _) = parse_mem(
         "surface s() { illuminance(\"c\", P, N, 1, \"lightcache\", \"refresh\") {} }",

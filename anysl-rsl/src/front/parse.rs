@@ -707,14 +707,36 @@ impl Parser<'_, '_> {
         let mut vars = Vec::new();
         loop {
             let name = self.ident("a variable name")?;
-            let array = if self.eat(P::LBracket) {
-                let n = self.array_len()?;
-                self.expect(P::RBracket, "`]` after the array length")?;
-                Some(n)
+            let mut unsized_at = None;
+            let mut array = if self.eat(P::LBracket) {
+                if self.at(P::RBracket) {
+                    unsized_at = Some(self.bump().span);
+                    Some(0)
+                } else {
+                    let n = self.array_len()?;
+                    self.expect(P::RBracket, "`]` after the array length")?;
+                    Some(n)
+                }
             } else {
                 None
             };
             let init = if self.eat(P::Assign) { Some(self.expr()?) } else { None };
+            // `float a[] = {1, 2, 3}`: the length comes from the initializer.
+            if let Some(at) = unsized_at {
+                match init.as_ref().map(|e| &e.kind) {
+                    Some(ExprKind::ArrayInit(v)) => array = Some(u32::try_from(v.len()).unwrap_or(u32::MAX)),
+                    _ => {
+                        self.report(
+                            Diagnostic::error(codes::SYNTAX, at, format!("array `{}` needs a length", name.name))
+                                .with_label("no length here")
+                                .with_note(
+                                    "write the length, `float a[3]`, or an initializer, `float a[] = {1, 2, 3}`",
+                                ),
+                        );
+                        return Err(Fail);
+                    }
+                }
+            }
             let span = name.span.to(self.prev_span());
             vars.push(Declarator { name, array, init, span });
             if !self.eat(P::Comma) {
