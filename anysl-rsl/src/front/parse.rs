@@ -512,144 +512,172 @@ impl Parser<'_, '_> {
         r
     }
 
+    /// Dispatches on the first token. Each statement kind is parsed in its own function so that
+    /// the frames on the recursion path (stmt → block → stmt …) stay small even in debug builds.
     fn stmt_inner(&mut self) -> PResult<Stmt> {
-        let t = self.peek().clone();
-        let start = t.span;
-        let kind = match &t.kind {
+        let start = self.peek().span;
+        let kind = match self.peek().kind {
             TokenKind::Punct(P::Semi) => {
                 self.bump();
-                StmtKind::Empty
+                Ok(StmtKind::Empty)
             }
-            TokenKind::Punct(P::LBrace) => StmtKind::Block(self.block()?),
-            TokenKind::Keyword(K::If) => {
-                self.bump();
-                let cond = self.paren_cond("if")?;
-                let then = Box::new(self.stmt()?);
-                let otherwise = if self.at_kw(K::Else) {
-                    self.bump();
-                    Some(Box::new(self.stmt()?))
+            TokenKind::Punct(P::LBrace) => self.block().map(StmtKind::Block),
+            TokenKind::Keyword(K::If) => self.if_stmt(),
+            TokenKind::Keyword(K::While) => self.while_stmt(),
+            TokenKind::Keyword(K::For) => self.for_stmt(),
+            TokenKind::Keyword(k @ (K::Break | K::Continue)) => self.loop_mod_stmt(k),
+            TokenKind::Keyword(K::Return) => self.return_stmt(),
+            TokenKind::Keyword(K::Illuminance) => self.illuminance(),
+            TokenKind::Keyword(K::Illuminate) => self.illuminate(),
+            TokenKind::Keyword(K::Solar) => self.solar(),
+            TokenKind::Keyword(K::Gather) => self.gather(),
+            TokenKind::Keyword(K::Else) => Err(self.stray_else(start)),
+            TokenKind::Keyword(K::Extern | K::Uniform | K::Varying | K::Output) => self.declaration(),
+            TokenKind::Keyword(k) if type_keyword(k).is_some() && self.peek_at(1).word().is_some() => {
+                self.declaration()
+            }
+            TokenKind::Ident(_) if self.peek_at(1).is(P::LParen) && self.is_untyped_function() => {
+                self.function().map(|f| StmtKind::Function(Box::new(f)))
+            }
+            _ => self.expr_stmt(),
+        }?;
+        Ok(Stmt { kind, span: start.to(self.prev_span()) })
+    }
+
+    fn boxed_stmt(&mut self) -> PResult<Box<Stmt>> {
+        self.stmt().map(Box::new)
+    }
+
+    /// `if (cond) stmt [else stmt]`
+    fn if_stmt(&mut self) -> PResult<StmtKind> {
+        self.bump();
+        let cond = self.paren_cond("if")?;
+        let then = self.boxed_stmt()?;
+        let otherwise = if self.at_kw(K::Else) {
+            self.bump();
+            Some(self.boxed_stmt()?)
+        } else {
+            None
+        };
+        Ok(StmtKind::If { cond, then, otherwise })
+    }
+
+    fn while_stmt(&mut self) -> PResult<StmtKind> {
+        self.bump();
+        let cond = self.paren_cond("while")?;
+        Ok(StmtKind::While { cond, body: self.boxed_stmt()? })
+    }
+
+    /// `for ([init]; [cond]; [step]) stmt`
+    fn for_stmt(&mut self) -> PResult<StmtKind> {
+        self.bump();
+        self.expect(P::LParen, "`(` after `for`")?;
+        if self.starts_formal() {
+            let span = self.peek().span;
+            self.report(
+                Diagnostic::error(codes::SYNTAX, span, "declarations are not allowed in a `for` header")
+                    .with_label("declare the variable before the loop"),
+            );
+            return Err(Fail);
+        }
+        let init = if self.at(P::Semi) { None } else { Some(self.expr()?) };
+        self.expect(P::Semi, "`;` after the `for` initialization")?;
+        let cond = if self.at(P::Semi) { None } else { Some(self.expr()?) };
+        self.expect(P::Semi, "`;` after the `for` condition")?;
+        let step = if self.at(P::RParen) { None } else { Some(self.expr()?) };
+        self.expect(P::RParen, "`)` to close the `for` header")?;
+        Ok(StmtKind::For { init, cond, step, body: self.boxed_stmt()? })
+    }
+
+    /// `break [n];` / `continue [n];`
+    fn loop_mod_stmt(&mut self, k: K) -> PResult<StmtKind> {
+        self.bump();
+        let level = match self.peek().kind {
+            TokenKind::Number(v) => {
+                let span = self.bump().span;
+                if v >= 1.0 && v.fract() == 0.0 && v <= f64::from(u32::MAX) {
+                    Some(v as u32)
                 } else {
-                    None
-                };
-                StmtKind::If { cond, then, otherwise }
-            }
-            TokenKind::Keyword(K::While) => {
-                self.bump();
-                let cond = self.paren_cond("while")?;
-                StmtKind::While { cond, body: Box::new(self.stmt()?) }
-            }
-            TokenKind::Keyword(K::For) => {
-                self.bump();
-                self.expect(P::LParen, "`(` after `for`")?;
-                if self.starts_formal() {
-                    let span = self.peek().span;
                     self.report(
-                        Diagnostic::error(codes::SYNTAX, span, "declarations are not allowed in a `for` header")
-                            .with_label("declare the variable before the loop"),
+                        Diagnostic::error(codes::SYNTAX, span, format!("bad loop level `{v}`"))
+                            .with_label("must be a whole number ≥ 1"),
                     );
                     return Err(Fail);
                 }
-                let init = if self.at(P::Semi) { None } else { Some(self.expr()?) };
-                self.expect(P::Semi, "`;` after the `for` initialization")?;
-                let cond = if self.at(P::Semi) { None } else { Some(self.expr()?) };
-                self.expect(P::Semi, "`;` after the `for` condition")?;
-                let step = if self.at(P::RParen) { None } else { Some(self.expr()?) };
-                self.expect(P::RParen, "`)` to close the `for` header")?;
-                StmtKind::For { init, cond, step, body: Box::new(self.stmt()?) }
             }
-            TokenKind::Keyword(k @ (K::Break | K::Continue)) => {
-                self.bump();
-                let level = match self.peek().kind {
-                    TokenKind::Number(v) => {
-                        let span = self.bump().span;
-                        if v >= 1.0 && v.fract() == 0.0 && v <= f64::from(u32::MAX) {
-                            Some(v as u32)
-                        } else {
-                            self.report(
-                                Diagnostic::error(codes::SYNTAX, span, format!("bad loop level `{v}`"))
-                                    .with_label("must be a whole number ≥ 1"),
-                            );
-                            return Err(Fail);
-                        }
-                    }
-                    _ => None,
-                };
-                self.expect(P::Semi, &format!("`;` after `{}`", k.as_str()))?;
-                if *k == K::Break {
-                    StmtKind::Break(level)
-                } else {
-                    StmtKind::Continue(level)
-                }
-            }
-            TokenKind::Keyword(K::Return) => {
-                self.bump();
-                let value = if self.at(P::Semi) { None } else { Some(self.expr()?) };
-                self.expect(P::Semi, "`;` after the return value")?;
-                StmtKind::Return(value)
-            }
-            TokenKind::Keyword(K::Illuminance) => self.illuminance(start)?,
-            TokenKind::Keyword(K::Illuminate) => {
-                self.bump();
-                let (mut args, span) = self.loop_args("illuminate")?;
-                let cone = match args.len() {
-                    1 => None,
-                    3 => {
-                        let angle = args.pop();
-                        args.pop().zip(angle)
-                    }
-                    n => return Err(self.arg_count_error(span, "illuminate", "1 or 3", n)),
-                };
-                let Some(position) = args.pop() else { return Err(Fail) };
-                StmtKind::Illuminate { position, cone, body: Box::new(self.stmt()?) }
-            }
-            TokenKind::Keyword(K::Solar) => {
-                self.bump();
-                let (mut args, span) = self.loop_args("solar")?;
-                let cone = match args.len() {
-                    0 => None,
-                    2 => {
-                        let angle = args.pop();
-                        args.pop().zip(angle)
-                    }
-                    n => return Err(self.arg_count_error(span, "solar", "0 or 2", n)),
-                };
-                StmtKind::Solar { cone, body: Box::new(self.stmt()?) }
-            }
-            TokenKind::Keyword(K::Gather) => {
-                self.bump();
-                let (args, _) = self.loop_args("gather")?;
-                let body = Box::new(self.stmt()?);
-                let otherwise = if self.at_kw(K::Else) {
-                    self.bump();
-                    Some(Box::new(self.stmt()?))
-                } else {
-                    None
-                };
-                StmtKind::Gather { args, body, otherwise }
-            }
-            TokenKind::Keyword(K::Else) => {
-                self.report(
-                    Diagnostic::error(codes::SYNTAX, start, "`else` without `if`")
-                        .with_label("no `if` before this `else`")
-                        .with_note("is there a `;` after the `if` body's closing `}` or a missing `{`?"),
-                );
-                self.bump();
-                return Err(Fail);
-            }
-            TokenKind::Keyword(K::Extern | K::Uniform | K::Varying | K::Output) => self.declaration()?,
-            TokenKind::Keyword(k) if type_keyword(*k).is_some() && self.peek_at(1).word().is_some() => {
-                self.declaration()?
-            }
-            TokenKind::Ident(_) if self.peek_at(1).is(P::LParen) && self.is_untyped_function() => {
-                StmtKind::Function(Box::new(self.function()?))
-            }
-            _ => {
-                let e = self.expr()?;
-                self.expect(P::Semi, "`;` after expression")?;
-                StmtKind::Expr(e)
-            }
+            _ => None,
         };
-        Ok(Stmt { kind, span: start.to(self.prev_span()) })
+        self.expect(P::Semi, &format!("`;` after `{}`", k.as_str()))?;
+        Ok(if k == K::Break { StmtKind::Break(level) } else { StmtKind::Continue(level) })
+    }
+
+    fn return_stmt(&mut self) -> PResult<StmtKind> {
+        self.bump();
+        let value = if self.at(P::Semi) { None } else { Some(self.expr()?) };
+        self.expect(P::Semi, "`;` after the return value")?;
+        Ok(StmtKind::Return(value))
+    }
+
+    /// `illuminate(position [, axis, angle]) stmt`
+    fn illuminate(&mut self) -> PResult<StmtKind> {
+        self.bump();
+        let (mut args, span) = self.loop_args("illuminate")?;
+        let cone = match args.len() {
+            1 => None,
+            3 => {
+                let angle = args.pop();
+                args.pop().zip(angle)
+            }
+            n => return Err(self.arg_count_error(span, "illuminate", "1 or 3", n)),
+        };
+        let Some(position) = args.pop() else { return Err(Fail) };
+        Ok(StmtKind::Illuminate { position, cone, body: self.boxed_stmt()? })
+    }
+
+    /// `solar([axis, angle]) stmt`
+    fn solar(&mut self) -> PResult<StmtKind> {
+        self.bump();
+        let (mut args, span) = self.loop_args("solar")?;
+        let cone = match args.len() {
+            0 => None,
+            2 => {
+                let angle = args.pop();
+                args.pop().zip(angle)
+            }
+            n => return Err(self.arg_count_error(span, "solar", "0 or 2", n)),
+        };
+        Ok(StmtKind::Solar { cone, body: self.boxed_stmt()? })
+    }
+
+    /// `gather(args…) stmt [else stmt]`
+    fn gather(&mut self) -> PResult<StmtKind> {
+        self.bump();
+        let (args, _) = self.loop_args("gather")?;
+        let body = self.boxed_stmt()?;
+        let otherwise = if self.at_kw(K::Else) {
+            self.bump();
+            Some(self.boxed_stmt()?)
+        } else {
+            None
+        };
+        Ok(StmtKind::Gather { args, body, otherwise })
+    }
+
+    #[cold]
+    fn stray_else(&mut self, start: Span) -> Fail {
+        self.report(
+            Diagnostic::error(codes::SYNTAX, start, "`else` without `if`")
+                .with_label("no `if` before this `else`")
+                .with_note("is there a `;` after the `if` body's closing `}` or a missing `{`?"),
+        );
+        self.bump();
+        Fail
+    }
+
+    fn expr_stmt(&mut self) -> PResult<StmtKind> {
+        let e = self.expr()?;
+        self.expect(P::Semi, "`;` after expression")?;
+        Ok(StmtKind::Expr(e))
     }
 
     /// `name ( … ) {` — a nested function definition without a return type.
@@ -770,7 +798,8 @@ impl Parser<'_, '_> {
         Fail
     }
 
-    fn illuminance(&mut self, start: Span) -> PResult<StmtKind> {
+    /// `illuminance([category,] position [, axis, angle]) stmt`
+    fn illuminance(&mut self) -> PResult<StmtKind> {
         self.bump();
         let (args, span) = self.loop_args("illuminance")?;
         let first_is_string = matches!(args.first().map(|e| &e.kind), Some(ExprKind::Str(_)));
@@ -802,8 +831,7 @@ impl Parser<'_, '_> {
             (Some(a), Some(b)) => Some((a, b)),
             _ => None,
         };
-        let _ = start;
-        Ok(StmtKind::Illuminance { category, position, cone, body: Box::new(self.stmt()?) })
+        Ok(StmtKind::Illuminance { category, position, cone, body: self.boxed_stmt()? })
     }
 
     // ---- expressions --------------------------------------------------------------------------
