@@ -146,7 +146,7 @@ impl Keyword {
 
     /// The keyword spelled `s`, if any.
     #[must_use]
-    pub fn from_str(s: &str) -> Option<Self> {
+    pub fn from_word(s: &str) -> Option<Self> {
         Self::ALL.iter().copied().find(|k| k.as_str() == s)
     }
 }
@@ -448,7 +448,7 @@ impl Lexer<'_> {
                 self.pos += 1;
             }
             let word = &self.text[start..self.pos];
-            return Some(match Keyword::from_str(word) {
+            return Some(match Keyword::from_word(word) {
                 Some(k) => TokenKind::Keyword(k),
                 None => TokenKind::Ident(word.to_owned()),
             });

@@ -280,10 +280,13 @@ impl Parser<'_, '_> {
                     continue;
                 }
                 TokenKind::Punct(P::LBrace) => depth += 1,
-                TokenKind::Keyword(k) if depth == 0 && consumed && t.line_start => {
-                    if shader_keyword(*k).is_some() || type_keyword(*k).is_some() {
-                        return;
-                    }
+                TokenKind::Keyword(k)
+                    if depth == 0
+                        && consumed
+                        && t.line_start
+                        && (shader_keyword(*k).is_some() || type_keyword(*k).is_some()) =>
+                {
+                    return;
                 }
                 _ => {}
             }

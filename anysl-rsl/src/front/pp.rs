@@ -439,7 +439,12 @@ impl Pp<'_> {
                 return;
             }
         };
-        let name_span = args.first().map_or(span, |t| span.to(t.span).to(args[args.len() - 1].span));
+        // The caret goes under the file name (`"x.h"` or `<x.h>`).
+        let name_span = match args.first() {
+            Some(t) if t.is(Punct::Lt) => args.iter().find(|t| t.is(Punct::Gt)).map_or(t.span, |gt| t.span.to(gt.span)),
+            Some(t) => t.span,
+            None => span,
+        };
         if self.includes_disabled {
             return;
         }
@@ -588,7 +593,7 @@ impl Pp<'_> {
             let bt = &body[k];
             // `# param` → string
             if bt.is(Punct::Hash) && mac.params.is_some() {
-                if let Some(p) = body.get(k + 1).and_then(|n| param_of(n)) {
+                if let Some(p) = body.get(k + 1).and_then(param_of) {
                     let text = self.spelling(args.get(p).map_or(&[][..], |a| &a[..]));
                     let tok = Token { kind: TokenKind::Str(text), span: at, line_start: false, space_before: true };
                     out.push(PTok { tok, hide: hide.clone() });
