@@ -265,11 +265,7 @@ impl<F: ShadingFloat> Vec3<F> {
     #[inline(always)]
     #[must_use]
     pub fn cross(self, o: Self) -> Self {
-        Self::new(
-            self.y * o.z - self.z * o.y,
-            self.z * o.x - self.x * o.z,
-            self.x * o.y - self.y * o.x,
-        )
+        Self::new(self.y * o.z - self.z * o.y, self.z * o.x - self.x * o.z, self.x * o.y - self.y * o.x)
     }
     /// Euclidean length.
     #[inline(always)]
@@ -307,19 +303,16 @@ impl<F: ShadingFloat> Vec3<F> {
             (2f64.powi(-1000), 2f64.powi(1000))
         };
         let rescale = l2.lt(F::c(lo)) | l2.gt(F::c(hi));
-        let unit = if rescale.any() {
+        if rescale.any() {
             Self::select(rescale, self.normalize_rescaled(), unit)
-        } else {
-            unit
-        };
-        if F::HAS_DERIVS {
-            unit.map(finite_derivatives)
         } else {
             unit
         }
     }
-    /// `normalize` through `self / max|component|` (the rare path of [`Vec3::normalize`]).
-    #[inline(never)]
+    /// `normalize` through `self / max|component|` (the rare path of [`Vec3::normalize`]),
+    /// with derivatives that overflow near |v| = 0 set to 0. (On the common path, the only
+    /// derivative that can overflow is that of a quotient, which anysl-ad already clamps.)
+    #[inline(always)]
     fn normalize_rescaled(self) -> Self {
         let zero = F::c(0.0);
         // The scale is a constant for the derivatives: normalize(v/m) = normalize(v).
@@ -327,7 +320,12 @@ impl<F: ShadingFloat> Vec3<F> {
         let usable = m.gt(zero) & m.lt(F::c(f64::INFINITY));
         let w = self / F::select(usable, m, F::c(1.0));
         let l2 = w.dot(w);
-        w * F::select(l2.gt(zero), F::c(1.0) / l2.sqrt(), zero)
+        let unit = w * F::select(l2.gt(zero), F::c(1.0) / l2.sqrt(), zero);
+        if F::HAS_DERIVS {
+            unit.map(finite_derivatives)
+        } else {
+            unit
+        }
     }
     /// The same triple as a colour.
     #[inline(always)]
@@ -363,9 +361,7 @@ impl<F: ShadingFloat> Matrix4<F> {
     /// From 16 constants in row order (RSL `matrix(m00, m01, …)`).
     #[must_use]
     pub fn from_array(v: [f64; 16]) -> Self {
-        Self {
-            m: core::array::from_fn(|r| core::array::from_fn(|c| F::c(v[r * 4 + c]))),
-        }
+        Self { m: core::array::from_fn(|r| core::array::from_fn(|c| F::c(v[r * 4 + c]))) }
     }
     /// The identity.
     #[must_use]
@@ -376,9 +372,7 @@ impl<F: ShadingFloat> Matrix4<F> {
     #[must_use]
     pub fn scalar(s: F) -> Self {
         let z = F::c(0.0);
-        Self {
-            m: core::array::from_fn(|r| core::array::from_fn(|c| if r == c { s } else { z })),
-        }
+        Self { m: core::array::from_fn(|r| core::array::from_fn(|c| if r == c { s } else { z })) }
     }
     /// A translation by `t`.
     #[must_use]
@@ -419,9 +413,7 @@ impl<F: ShadingFloat> Matrix4<F> {
     /// The transpose.
     #[must_use]
     pub fn transpose(self) -> Self {
-        Self {
-            m: core::array::from_fn(|r| core::array::from_fn(|c| self.m[c][r])),
-        }
+        Self { m: core::array::from_fn(|r| core::array::from_fn(|c| self.m[c][r])) }
     }
     /// Transforms a point (`w = 1`, with the homogeneous divide).
     #[inline]
@@ -465,9 +457,7 @@ impl<F: ShadingFloat> Matrix4<F> {
         let zero = F::c(0.0);
         let singular = det.eq(zero);
         let inv_det = F::select(singular, zero, F::c(1.0) / F::select(singular, F::c(1.0), det));
-        Self {
-            m: adj.m.map(|row| row.map(|v| v * inv_det)),
-        }
+        Self { m: adj.m.map(|row| row.map(|v| v * inv_det)) }
     }
     /// Adjugate and determinant by cofactor expansion (branch-free, so it works per lane).
     fn adjugate_det(&self) -> (Self, F) {
@@ -535,14 +525,10 @@ impl<F: ShadingFloat> Mul for Matrix4<F> {
 impl<F: ShadingFloat> Blend<F> for Matrix4<F> {
     #[inline(always)]
     fn blend(m: F::Mask, a: Self, b: Self) -> Self {
-        Self {
-            m: core::array::from_fn(|r| core::array::from_fn(|c| F::select(m, a.m[r][c], b.m[r][c]))),
-        }
+        Self { m: core::array::from_fn(|r| core::array::from_fn(|c| F::select(m, a.m[r][c], b.m[r][c]))) }
     }
     fn widen(self) -> Self {
-        Self {
-            m: self.m.map(|row| row.map(Blend::widen)),
-        }
+        Self { m: self.m.map(|row| row.map(Blend::widen)) }
     }
 }
 
