@@ -1,7 +1,352 @@
 //! # anysl-jit
 //!
-//! The run-time LLVM back end for RSL shaders (cargo feature `jit` of the CLI).
+//! The run-time half of AnySL: an `.sl` shader loaded while the program runs is lowered from
+//! the portable IR to LLVM IR as *subroutine-threaded code* (every op a call to an
+//! `ar_<op>_<types>` function of a target library), specialized for the renderer's concrete
+//! types (scalar `f32`, 4/8/16-wide vectors with lane masks, dual numbers), inlined,
+//! optimized and compiled to machine code for the host CPU.
 //!
-//! This crate is the home of that work; it is being built in a later stage of the project
-//! (see `ARCHITECTURE.md`). Today it only re-exports the front end it will consume.
+//! ```no_run
+//! use anysl_jit::{JitShader, JitOptions};
+//! use anysl_core::prelude::*;
+//! let shader = JitShader::from_file("shaders/rsl/plastic.sl".as_ref(), &[], JitOptions::default()).unwrap();
+//! // `shader` is a SurfaceShader: any renderer shades it with f32, F32x8, Dual<f32>, …; the
+//! // variant for each float type is compiled on first use.
+//! assert_eq!(shader.meta().name, "plastic");
+//! ```
+//!
+//! The pipeline ([`compile`]): IR passes (specialization of the instance's uniform
+//! parameters, constant folding, DCE, uniform/varying and derivative analyses) → LLVM IR
+//! generation ([`codegen`]) → the new pass manager (`default<O2>`) → MCJIT with the host's
+//! `target-cpu`/`target-features`. [`CompileStats`] reports the time and the instruction
+//! counts of each stage.
+
+pub mod abi;
+pub mod codegen;
+pub mod rt;
+mod shader;
+
 pub use anysl_rsl as rsl;
+pub use shader::{variant_of, JitShader};
+
+use abi::{JitFloat, ShadeFn};
+use anysl_ad::Dual;
+use anysl_rsl::ir::{Const, Module};
+use anysl_simd::{F32x16, F32x4, F32x8};
+use codegen::{Cg, Target};
+use inkwell::context::Context;
+use inkwell::execution_engine::ExecutionEngine;
+use inkwell::passes::PassBuilderOptions;
+use inkwell::targets::{CodeModel, InitializationConfig, RelocMode, Target as LlvmTarget, TargetMachine};
+use inkwell::OptimizationLevel;
+use std::fmt;
+use std::sync::Once;
+use std::time::Instant;
+
+/// The float types the JIT compiles for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Variant {
+    /// `f32`
+    F32,
+    /// `F32x4`
+    X4,
+    /// `F32x8`
+    X8,
+    /// `F32x16`
+    X16,
+    /// `Dual<f32>`
+    DualF32,
+    /// `Dual<F32x8>`
+    DualX8,
+}
+
+impl Variant {
+    /// Every variant.
+    pub const ALL: [Variant; 6] = [Self::F32, Self::X4, Self::X8, Self::X16, Self::DualF32, Self::DualX8];
+
+    /// Lanes of the underlying vectors.
+    #[must_use]
+    pub const fn lanes(self) -> u32 {
+        match self {
+            Self::F32 | Self::DualF32 => 1,
+            Self::X4 => 4,
+            Self::X8 | Self::DualX8 => 8,
+            Self::X16 => 16,
+        }
+    }
+
+    /// Dual numbers.
+    #[must_use]
+    pub const fn dual(self) -> bool {
+        matches!(self, Self::DualF32 | Self::DualX8)
+    }
+
+    /// Short name (`f32`, `x8`, `dual-x8`, …).
+    #[must_use]
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::F32 => "f32",
+            Self::X4 => "x4",
+            Self::X8 => "x8",
+            Self::X16 => "x16",
+            Self::DualF32 => "dual-f32",
+            Self::DualX8 => "dual-x8",
+        }
+    }
+
+    /// Index into [`Variant::ALL`].
+    #[must_use]
+    pub const fn index(self) -> usize {
+        match self {
+            Self::F32 => 0,
+            Self::X4 => 1,
+            Self::X8 => 2,
+            Self::X16 => 3,
+            Self::DualF32 => 4,
+            Self::DualX8 => 5,
+        }
+    }
+
+    fn rt_table(self) -> [usize; 5] {
+        fn t<F: JitFloat>() -> [usize; 5] {
+            rt::rt_table::<F>().map(|f| f as usize)
+        }
+        match self {
+            Self::F32 => t::<f32>(),
+            Self::X4 => t::<F32x4>(),
+            Self::X8 => t::<F32x8>(),
+            Self::X16 => t::<F32x16>(),
+            Self::DualF32 => t::<Dual<f32>>(),
+            Self::DualX8 => t::<Dual<F32x8>>(),
+        }
+    }
+}
+
+/// Compiler settings.
+#[derive(Clone, Debug, PartialEq)]
+pub struct JitOptions {
+    /// LLVM optimization level 0–3 (the pass pipeline `default<On>` and the code generator).
+    pub opt_level: u32,
+    /// Lower ops to threaded target-library calls (inlined away); `false` emits them inline.
+    pub threaded: bool,
+    /// Generate code for the host CPU (`target-cpu`/`target-features`); else generic x86-64.
+    pub host_cpu: bool,
+    /// Specialize uniform parameters to the instance's values (recompiles on `set_param`).
+    pub specialize: bool,
+}
+
+impl JitOptions {
+    /// The defaults: O2, threaded, host CPU, specialized.
+    #[must_use]
+    pub const fn new() -> Self {
+        Self { opt_level: 2, threaded: true, host_cpu: true, specialize: true }
+    }
+}
+
+impl Default for JitOptions {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+/// Why a shader could not be compiled.
+#[derive(Clone, Debug)]
+pub struct JitError(pub String);
+
+impl fmt::Display for JitError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "jit: {}", self.0)
+    }
+}
+
+impl std::error::Error for JitError {}
+
+/// Time and size of each compilation stage.
+#[derive(Clone, Debug, Default)]
+pub struct CompileStats {
+    /// `(stage, milliseconds)`: `ir-passes`, `llvm-irgen`, `optimize`, `codegen` (and
+    /// `parse+check` when compiled from source).
+    pub times_ms: Vec<(&'static str, f64)>,
+    /// `(stage, count)`: IR instructions after each IR pass, then LLVM instructions after
+    /// generation (`llvm-generated`) and after optimization (`llvm-optimized`).
+    pub insts: Vec<(String, usize)>,
+    /// Threaded target-library functions created.
+    pub threaded_fns: usize,
+}
+
+impl CompileStats {
+    /// Total milliseconds.
+    #[must_use]
+    pub fn total_ms(&self) -> f64 {
+        self.times_ms.iter().map(|(_, t)| t).sum()
+    }
+}
+
+/// Keeps the LLVM objects behind a compiled function alive.
+struct Owned {
+    ee: Option<ExecutionEngine<'static>>,
+    module: Option<inkwell::module::Module<'static>>,
+    ctx: Option<Box<Context>>,
+}
+
+impl Drop for Owned {
+    fn drop(&mut self) {
+        // The engine owns the module; both go before their context.
+        self.module.take();
+        self.ee.take();
+        self.ctx.take();
+    }
+}
+
+// SAFETY: after compilation the LLVM objects are never touched again except to be dropped;
+// the machine code is immutable.
+unsafe impl Send for Owned {}
+unsafe impl Sync for Owned {}
+
+/// A shader compiled for one variant.
+pub struct CompiledShader {
+    /// The entry point (see [`abi::ShadeFn`]).
+    pub f: ShadeFn,
+    /// The variant.
+    pub variant: Variant,
+    /// Stage times and instruction counts.
+    pub stats: CompileStats,
+    /// The optimized LLVM IR, when requested.
+    pub llvm_ir: Option<String>,
+    _owned: Owned,
+}
+
+impl fmt::Debug for CompiledShader {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("CompiledShader").field("variant", &self.variant).field("stats", &self.stats).finish()
+    }
+}
+
+fn init_llvm() {
+    static ONCE: Once = Once::new();
+    ONCE.call_once(|| {
+        LlvmTarget::initialize_native(&InitializationConfig::default()).expect("native target");
+    });
+}
+
+fn count_insts(m: &inkwell::module::Module<'_>) -> usize {
+    let mut n = 0;
+    let mut f = m.get_first_function();
+    while let Some(func) = f {
+        for bb in func.get_basic_blocks() {
+            let mut i = bb.get_first_instruction();
+            while let Some(inst) = i {
+                n += 1;
+                i = inst.get_next_instruction();
+            }
+        }
+        f = func.get_next_function();
+    }
+    n
+}
+
+/// Runs the IR passes on a lowered module for one instance: specialization of uniform
+/// parameters to `values` (when `specialize`), folding, DCE and the analyses.
+#[must_use]
+pub fn ir_passes(module: &Module, values: &[Const], specialize: bool) -> (Module, anysl_rsl::passes::PassReport) {
+    let mut m = module.clone();
+    let spec: Vec<(String, Const)> = if specialize {
+        m.params.iter().zip(values).map(|(p, v)| (p.name.clone(), v.clone())).collect()
+    } else {
+        Vec::new()
+    };
+    let opts =
+        anysl_rsl::passes::PassOptions { specialize: spec, specialize_defaults: specialize, ..Default::default() };
+    let report = anysl_rsl::passes::optimize(&mut m, &opts);
+    (m, report)
+}
+
+/// Compiles a lowered (not yet optimized) module for `variant` with the instance's parameter
+/// `values`.
+///
+/// # Errors
+/// When the shader uses something the JIT does not support (light shaders, textures) or LLVM
+/// fails.
+pub fn compile(
+    module: &Module,
+    values: &[Const],
+    variant: Variant,
+    opts: &JitOptions,
+) -> Result<CompiledShader, JitError> {
+    compile_with(module, values, variant, opts, false)
+}
+
+/// [`compile`], optionally keeping the optimized LLVM IR text.
+///
+/// # Errors
+/// See [`compile`].
+pub fn compile_with(
+    module: &Module,
+    values: &[Const],
+    variant: Variant,
+    opts: &JitOptions,
+    keep_ir: bool,
+) -> Result<CompiledShader, JitError> {
+    init_llvm();
+    let mut stats = CompileStats::default();
+    let t0 = Instant::now();
+    let (m, report) = ir_passes(module, values, opts.specialize);
+    for (s, n) in &report.stages {
+        stats.insts.push((format!("ir-{s}"), *n));
+    }
+    stats.times_ms.push(("ir-passes", t0.elapsed().as_secs_f64() * 1e3));
+
+    let t1 = Instant::now();
+    let ctx = Box::new(Context::create());
+    // SAFETY: the context lives in `Owned` next to everything built from it and is dropped last.
+    let cref: &'static Context = unsafe { &*(ctx.as_ref() as *const Context) };
+    let target = Target { lanes: variant.lanes(), dual: variant.dual(), threaded: opts.threaded };
+    let mut cg = Cg::new(cref, &m.func, target, variant.rt_table(), Variant::F32.rt_table());
+    let (cpu, features) = if opts.host_cpu {
+        (TargetMachine::get_host_cpu_name().to_string(), TargetMachine::get_host_cpu_features().to_string())
+    } else {
+        ("x86-64".to_string(), String::new())
+    };
+    cg.fn_attrs = vec![("target-cpu".into(), cpu.clone()), ("target-features".into(), features.clone())];
+    cg.generate(&m, values).map_err(|e| JitError(e.0))?;
+    stats.threaded_fns = cg.threaded_fns;
+    let llmod = std::mem::replace(&mut cg.m, cref.create_module("empty"));
+    drop(cg);
+    if let Err(e) = llmod.verify() {
+        return Err(JitError(format!("invalid LLVM IR: {}", e.to_string())));
+    }
+    stats.insts.push(("llvm-generated".into(), count_insts(&llmod)));
+    stats.times_ms.push(("llvm-irgen", t1.elapsed().as_secs_f64() * 1e3));
+
+    let t2 = Instant::now();
+    let level = match opts.opt_level {
+        0 => OptimizationLevel::None,
+        1 => OptimizationLevel::Less,
+        2 => OptimizationLevel::Default,
+        _ => OptimizationLevel::Aggressive,
+    };
+    let triple = TargetMachine::get_default_triple();
+    let tgt = LlvmTarget::from_triple(&triple).map_err(|e| JitError(e.to_string()))?;
+    let tm = tgt
+        .create_target_machine(&triple, &cpu, &features, level, RelocMode::Default, CodeModel::JITDefault)
+        .ok_or_else(|| JitError("no target machine".into()))?;
+    let pipeline = format!("default<O{}>", opts.opt_level.min(3));
+    llmod.run_passes(&pipeline, &tm, PassBuilderOptions::create()).map_err(|e| JitError(e.to_string()))?;
+    stats.insts.push(("llvm-optimized".into(), count_insts(&llmod)));
+    stats.times_ms.push(("optimize", t2.elapsed().as_secs_f64() * 1e3));
+    let llvm_ir = keep_ir.then(|| llmod.print_to_string().to_string());
+
+    let t3 = Instant::now();
+    let ee = llmod.create_jit_execution_engine(level).map_err(|e| JitError(e.to_string()))?;
+    let addr = ee.get_function_address(Cg::shade_name()).map_err(|e| JitError(e.to_string()))?;
+    stats.times_ms.push(("codegen", t3.elapsed().as_secs_f64() * 1e3));
+    // SAFETY: the function was generated with the `ShadeFn` signature.
+    let f: ShadeFn = unsafe { std::mem::transmute::<usize, ShadeFn>(addr) };
+    Ok(CompiledShader {
+        f,
+        variant,
+        stats,
+        llvm_ir,
+        _owned: Owned { ee: Some(ee), module: Some(llmod), ctx: Some(ctx) },
+    })
+}

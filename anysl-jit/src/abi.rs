@@ -1,0 +1,200 @@
+//! The boundary between JIT-compiled code and Rust: how values of each float type lie in
+//! memory, and the signatures of the compiled shader and of the callbacks it makes.
+//!
+//! Every value crosses the boundary as `f32` lanes: a value of a float type with `L` lanes
+//! is `L` consecutive `f32`s; a dual number is its value, ∂/∂x and ∂/∂y one after the other
+//! (`3 L` floats). Masks are `L` `u32` lanes (0 or `!0`). Triples are three values in a row.
+
+use anysl_ad::Dual;
+use anysl_core::ShadingFloat;
+use anysl_simd::{F32x16, F32x4, F32x8};
+use core::ffi::c_void;
+
+/// A callback of the runtime library or of the host: `(ctx, mask, inputs, outputs, aux)`.
+/// `aux` carries compile-time parameters (noise dimensions, knot counts, colour spaces, …).
+pub type RtFn = unsafe extern "C" fn(ctx: *mut c_void, mask: *const u32, inp: *const f32, out: *mut f32, aux: u32);
+
+/// The body of an `illuminance` loop, compiled as its own function: `(env, mask, L ++ Cl)`.
+pub type BodyFn = unsafe extern "C" fn(env: *mut u8, mask: *const u32, l_cl: *const f32);
+
+/// The host's `illuminance`: `(ctx, mask, P ++ axis ++ angle, has_cone, category, category
+/// length, body, env)`.
+pub type IllumFn = unsafe extern "C" fn(
+    ctx: *mut c_void,
+    mask: *const u32,
+    inp: *const f32,
+    has_cone: u32,
+    cat: *const u8,
+    cat_len: usize,
+    body: BodyFn,
+    env: *mut u8,
+);
+
+/// A compiled shader: `(globals, outputs, mask, ctx, host table)`; see [`GLOBAL_ORDER`] and
+/// [`OUTPUT_ORDER`] for the buffer layouts.
+pub type ShadeFn =
+    unsafe extern "C" fn(globals: *const f32, out: *mut f32, mask: *const u32, ctx: *mut c_void, host: *const usize);
+
+/// Order of the globals in the input buffer (one value per component).
+pub const GLOBAL_ORDER: [(anysl_rsl::ir::Global, usize); 15] = {
+    use anysl_rsl::ir::Global as G;
+    [
+        (G::P, 0),
+        (G::N, 3),
+        (G::Ng, 6),
+        (G::I, 9),
+        (G::E, 12),
+        (G::DPdu, 15),
+        (G::DPdv, 18),
+        (G::Cs, 21),
+        (G::Os, 24),
+        (G::S, 27),
+        (G::T, 28),
+        (G::U, 29),
+        (G::V, 30),
+        (G::Du, 31),
+        (G::Dv, 32),
+    ]
+};
+/// Number of values in the globals buffer.
+pub const GLOBAL_VALUES: usize = 33;
+/// Order of the outputs: `Ci`, `Oi` (surface), `P`, `N` (displacement).
+pub const OUTPUT_ORDER: [(anysl_rsl::ir::Global, usize); 4] = {
+    use anysl_rsl::ir::Global as G;
+    [(G::Ci, 0), (G::Oi, 3), (G::P, 6), (G::N, 9)]
+};
+/// Number of values in the output buffer.
+pub const OUTPUT_VALUES: usize = 12;
+
+/// Indices into the host table (callbacks that need the renderer's context).
+#[allow(missing_docs)]
+pub mod host {
+    pub const ILLUMINANCE: usize = 0;
+    pub const AMBIENT: usize = 1;
+    pub const DIFFUSE: usize = 2;
+    pub const SPECULAR: usize = 3;
+    pub const PHONG: usize = 4;
+    pub const TRACE: usize = 5;
+    pub const DU: usize = 6;
+    pub const DV: usize = 7;
+    pub const DERIV: usize = 8;
+    pub const CALCNORMAL: usize = 9;
+    pub const RANDOM: usize = 10;
+    pub const LEN: usize = 11;
+}
+
+/// A float type compiled code can be specialized for: how its values and masks lie in memory.
+///
+/// # Safety
+/// `read`/`write` access `STRIDE` floats (masks: `BASE_LANES` u32s) at the pointer.
+pub unsafe trait JitFloat: ShadingFloat {
+    /// Floats per value.
+    const STRIDE: usize;
+    /// Lanes of the underlying float vector.
+    const BASE_LANES: usize;
+    /// A dual number.
+    const DUAL: bool;
+    /// Reads a value.
+    ///
+    /// # Safety
+    /// `p` points at `STRIDE` readable floats.
+    unsafe fn read(p: *const f32) -> Self;
+    /// Writes a value.
+    ///
+    /// # Safety
+    /// `p` points at `STRIDE` writable floats.
+    unsafe fn write(self, p: *mut f32);
+    /// Reads a mask.
+    ///
+    /// # Safety
+    /// `p` points at `BASE_LANES` readable u32s.
+    unsafe fn read_mask(p: *const u32) -> Self::Mask;
+    /// Writes a mask.
+    ///
+    /// # Safety
+    /// `p` points at `BASE_LANES` writable u32s.
+    unsafe fn write_mask(m: Self::Mask, p: *mut u32);
+}
+
+unsafe impl JitFloat for f32 {
+    const STRIDE: usize = 1;
+    const BASE_LANES: usize = 1;
+    const DUAL: bool = false;
+    #[inline(always)]
+    unsafe fn read(p: *const f32) -> Self {
+        *p
+    }
+    #[inline(always)]
+    unsafe fn write(self, p: *mut f32) {
+        *p = self;
+    }
+    #[inline(always)]
+    unsafe fn read_mask(p: *const u32) -> bool {
+        *p != 0
+    }
+    #[inline(always)]
+    unsafe fn write_mask(m: bool, p: *mut u32) {
+        *p = if m { !0 } else { 0 };
+    }
+}
+
+macro_rules! jit_simd {
+    ($F:ident, $M:ident, $n:literal, $wf:ident, $wu:ident) => {
+        unsafe impl JitFloat for $F {
+            const STRIDE: usize = $n;
+            const BASE_LANES: usize = $n;
+            const DUAL: bool = false;
+            #[inline(always)]
+            unsafe fn read(p: *const f32) -> Self {
+                $F::from(core::ptr::read_unaligned(p.cast::<[f32; $n]>()))
+            }
+            #[inline(always)]
+            unsafe fn write(self, p: *mut f32) {
+                core::ptr::write_unaligned(p.cast::<[f32; $n]>(), self.to_array());
+            }
+            #[inline(always)]
+            unsafe fn read_mask(p: *const u32) -> Self::Mask {
+                let bits: [u32; $n] = core::ptr::read_unaligned(p.cast::<[u32; $n]>());
+                anysl_simd::$M(wide::$wf::from_bits(wide::$wu::from(bits)))
+            }
+            #[inline(always)]
+            unsafe fn write_mask(m: Self::Mask, p: *mut u32) {
+                core::ptr::write_unaligned(p.cast::<[u32; $n]>(), m.0.to_array().map(f32::to_bits));
+            }
+        }
+    };
+}
+
+jit_simd!(F32x4, M32x4, 4, f32x4, u32x4);
+jit_simd!(F32x8, M32x8, 8, f32x8, u32x8);
+jit_simd!(F32x16, M32x16, 16, f32x16, u32x16);
+
+unsafe impl<B: JitFloat> JitFloat for Dual<B>
+where
+    Dual<B>: ShadingFloat<Mask = B::Mask>,
+{
+    const STRIDE: usize = 3 * B::STRIDE;
+    const BASE_LANES: usize = B::BASE_LANES;
+    const DUAL: bool = true;
+    #[inline(always)]
+    unsafe fn read(p: *const f32) -> Self {
+        Dual::new(B::read(p), B::read(p.add(B::STRIDE)), B::read(p.add(2 * B::STRIDE)))
+    }
+    #[inline(always)]
+    unsafe fn write(self, p: *mut f32) {
+        self.val.write(p);
+        self.ddx.write(p.add(B::STRIDE));
+        self.ddy.write(p.add(2 * B::STRIDE));
+    }
+    #[inline(always)]
+    unsafe fn read_mask(p: *const u32) -> Self::Mask {
+        B::read_mask(p)
+    }
+    #[inline(always)]
+    unsafe fn write_mask(m: Self::Mask, p: *mut u32) {
+        B::write_mask(m, p);
+    }
+}
+
+/// Opaque pointer type used by callbacks.
+pub type Ctx = *mut c_void;

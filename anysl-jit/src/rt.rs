@@ -1,0 +1,711 @@
+//! The runtime half of the target library: built-ins too large to inline (noise, the
+//! transcendental functions, splines, matrices, …), written once and generic over the float
+//! type, and the host shims that give compiled code the renderer's `ShadingContext`.
+//!
+//! Every function here calls the same `anysl-core` standard library as the hand-written
+//! generic shaders, the generated Rust and the interpreter, so all back ends compute the same
+//! functions. Each has the [`RtFn`] signature; `aux` selects the variant (see the `*_OP`
+//! constants used by the code generator).
+
+use crate::abi::{BodyFn, JitFloat, RtFn};
+use anysl_core::prelude::*;
+use core::ffi::c_void;
+use core::marker::PhantomData;
+
+/// Reads consecutive values from a callback's input buffer.
+struct In<F> {
+    p: *const f32,
+    _f: PhantomData<F>,
+}
+
+impl<F: JitFloat> In<F> {
+    #[inline(always)]
+    fn new(p: *const f32) -> Self {
+        Self { p, _f: PhantomData }
+    }
+    #[inline(always)]
+    unsafe fn f(&mut self) -> F {
+        let v = F::read(self.p);
+        self.p = self.p.add(F::STRIDE);
+        v
+    }
+    #[inline(always)]
+    unsafe fn v3(&mut self) -> Vec3<F> {
+        let x = self.f();
+        let y = self.f();
+        let z = self.f();
+        Vec3::new(x, y, z)
+    }
+    #[inline(always)]
+    unsafe fn c3(&mut self) -> Color<F> {
+        let v = self.v3();
+        Color::new(v.x, v.y, v.z)
+    }
+    #[inline(always)]
+    unsafe fn m4(&mut self) -> Matrix4<F> {
+        let mut m = Matrix4::identity();
+        for i in 0..4 {
+            for j in 0..4 {
+                m.m[i][j] = self.f();
+            }
+        }
+        m
+    }
+}
+
+/// Writes consecutive values to a callback's output buffer.
+struct Out<F> {
+    p: *mut f32,
+    _f: PhantomData<F>,
+}
+
+impl<F: JitFloat> Out<F> {
+    #[inline(always)]
+    fn new(p: *mut f32) -> Self {
+        Self { p, _f: PhantomData }
+    }
+    #[inline(always)]
+    unsafe fn f(&mut self, v: F) {
+        v.write(self.p);
+        self.p = self.p.add(F::STRIDE);
+    }
+    #[inline(always)]
+    unsafe fn v3(&mut self, v: Vec3<F>) {
+        self.f(v.x);
+        self.f(v.y);
+        self.f(v.z);
+    }
+    #[inline(always)]
+    unsafe fn c3(&mut self, c: Color<F>) {
+        self.f(c.r);
+        self.f(c.g);
+        self.f(c.b);
+    }
+    #[inline(always)]
+    unsafe fn m4(&mut self, m: &Matrix4<F>) {
+        for i in 0..4 {
+            for j in 0..4 {
+                self.f(m.m[i][j]);
+            }
+        }
+    }
+}
+
+/// Unary functions (`aux` of [`rt_un`]).
+#[allow(missing_docs)]
+pub mod un {
+    pub const SIN: u32 = 0;
+    pub const COS: u32 = 1;
+    pub const TAN: u32 = 2;
+    pub const ASIN: u32 = 3;
+    pub const ACOS: u32 = 4;
+    pub const ATAN: u32 = 5;
+    pub const EXP: u32 = 6;
+    pub const LOG: u32 = 7;
+    pub const SIGN: u32 = 8;
+    pub const ROUND: u32 = 9;
+    pub const RADIANS: u32 = 10;
+    pub const DEGREES: u32 = 11;
+    pub const INVSQRT: u32 = 12;
+    pub const SQRT: u32 = 13;
+    pub const FLOOR: u32 = 14;
+    pub const CEIL: u32 = 15;
+    pub const ABS: u32 = 16;
+    pub const NOISE_SAFE: u32 = 17;
+}
+
+/// Binary and ternary functions (`aux` of [`rt_bin`]).
+#[allow(missing_docs)]
+pub mod bin {
+    pub const POW: u32 = 0;
+    pub const ATAN2: u32 = 1;
+    pub const LOG_BASE: u32 = 2;
+    pub const MOD: u32 = 3;
+    pub const MIN: u32 = 4;
+    pub const MAX: u32 = 5;
+    pub const STEP: u32 = 6;
+    pub const SMOOTHSTEP: u32 = 7;
+    pub const CLAMP: u32 = 8;
+    pub const MIX: u32 = 9;
+    pub const FILTERSTEP: u32 = 10;
+    pub const FILTERSTEP3: u32 = 11;
+}
+
+/// Geometric functions (`aux` of [`rt_geo`]).
+#[allow(missing_docs)]
+pub mod geo {
+    pub const LENGTH: u32 = 0;
+    pub const NORMALIZE: u32 = 1;
+    pub const DISTANCE: u32 = 2;
+    pub const FACEFORWARD: u32 = 3;
+    pub const REFLECT: u32 = 4;
+    pub const REFRACT: u32 = 5;
+    pub const FRESNEL: u32 = 6;
+    pub const PTLINED: u32 = 7;
+    pub const ROTATE: u32 = 8;
+    pub const SPECULARBRDF: u32 = 9;
+    pub const AREA: u32 = 10;
+    pub const FILTERWIDTH_P: u32 = 11;
+    pub const FILTERWIDTH: u32 = 12;
+    pub const MATMUL: u32 = 13;
+    pub const MATDIV: u32 = 14;
+    pub const DETERMINANT: u32 = 15;
+    pub const INVERSE: u32 = 16;
+    pub const TRANSLATE: u32 = 17;
+    pub const ROTATE_M: u32 = 18;
+    pub const SCALE_M: u32 = 19;
+    pub const XFORM_POINT: u32 = 20;
+    pub const XFORM_VECTOR: u32 = 21;
+    pub const XFORM_NORMAL: u32 = 22;
+    /// `aux = CTRANSFORM | from << 8 | to << 16` (indices into [`super::COLOR_SPACES`]).
+    pub const CTRANSFORM: u32 = 23;
+}
+
+/// Noise kinds (`aux & 0xf` of [`rt_noise`]; `aux >> 4 & 0xf` = dimensions, `aux >> 8` =
+/// output components; fBm: `aux >> 12` = number of octave/lacunarity/gain arguments).
+#[allow(missing_docs)]
+pub mod nkind {
+    pub const NOISE: u32 = 0;
+    pub const SNOISE: u32 = 1;
+    pub const CELL: u32 = 2;
+    pub const PNOISE: u32 = 3;
+    pub const PSNOISE: u32 = 4;
+    pub const FBM: u32 = 5;
+    pub const TURBULENCE: u32 = 6;
+}
+
+/// Colour-space names by index (for `aux`).
+pub const COLOR_SPACES: [&str; 6] = ["rgb", "hsv", "hsl", "xyz", "xyY", "YIQ"];
+/// Spline basis names by index (for `aux`).
+pub const SPLINE_BASES: [&str; 6] = ["catmull-rom", "bezier", "bspline", "hermite", "power", "linear"];
+
+/// Unary math, component-wise on one value.
+pub unsafe extern "C" fn rt_un<F: JitFloat>(_: *mut c_void, _: *const u32, inp: *const f32, out: *mut f32, aux: u32) {
+    let x = In::<F>::new(inp).f();
+    let r = match aux {
+        un::SIN => x.sin(),
+        un::COS => x.cos(),
+        un::TAN => x.tan(),
+        un::ASIN => x.asin(),
+        un::ACOS => x.acos(),
+        un::ATAN => x.atan(),
+        un::EXP => x.exp(),
+        un::LOG => x.ln(),
+        un::SIGN => sign(x),
+        un::ROUND => x.round(),
+        un::RADIANS => radians(x),
+        un::DEGREES => degrees(x),
+        un::INVSQRT => inversesqrt(x),
+        un::SQRT => x.sqrt(),
+        un::FLOOR => x.floor(),
+        un::CEIL => x.ceil(),
+        _ => x.abs(),
+    };
+    Out::<F>::new(out).f(r);
+}
+
+/// Binary and ternary math on floats.
+pub unsafe extern "C" fn rt_bin<F: JitFloat>(_: *mut c_void, _: *const u32, inp: *const f32, out: *mut f32, aux: u32) {
+    let mut i = In::<F>::new(inp);
+    let a = i.f();
+    let b = i.f();
+    let r = match aux {
+        bin::POW => a.pow(b),
+        bin::ATAN2 => a.atan2(b),
+        bin::LOG_BASE => log_base(a, b),
+        bin::MOD => fmod(a, b),
+        bin::MIN => a.min(b),
+        bin::MAX => a.max(b),
+        bin::STEP => step(a, b),
+        bin::SMOOTHSTEP => smoothstep(a, b, i.f()),
+        bin::CLAMP => clamp(a, b, i.f()),
+        bin::MIX => mix(a, b, i.f()),
+        bin::FILTERSTEP => filterstep(a, b),
+        _ => {
+            // filterstep(edge, s0, s1): box over [s0, s1] (as the interpreter).
+            let (e, s0, s1) = (a, b, i.f());
+            let lo = s0.min(s1);
+            let wdt = (s1 - s0).abs();
+            let t = clamp((lo + wdt - e) / wdt.max(F::c(1e-30)), F::c(0.0), F::c(1.0));
+            F::select(wdt.gt(F::c(0.0)), t, step(e, s0))
+        }
+    };
+    Out::<F>::new(out).f(r);
+}
+
+/// Geometry, matrices and colour spaces.
+pub unsafe extern "C" fn rt_geo<F: JitFloat>(_: *mut c_void, _: *const u32, inp: *const f32, out: *mut f32, aux: u32) {
+    let mut i = In::<F>::new(inp);
+    let mut o = Out::<F>::new(out);
+    match aux & 0xff {
+        geo::LENGTH => o.f(i.v3().length()),
+        geo::NORMALIZE => o.v3(i.v3().normalize()),
+        geo::DISTANCE => {
+            let a = i.v3();
+            o.f(distance(a, i.v3()));
+        }
+        geo::FACEFORWARD => {
+            let (n, ii) = (i.v3(), i.v3());
+            o.v3(faceforward(n, ii, i.v3()));
+        }
+        geo::REFLECT => {
+            let a = i.v3();
+            o.v3(reflect(a, i.v3()));
+        }
+        geo::REFRACT => {
+            let (a, n) = (i.v3(), i.v3());
+            o.v3(refract(a, n, i.f()));
+        }
+        geo::FRESNEL => {
+            let (a, n) = (i.v3(), i.v3());
+            let r = fresnel(a, n, i.f());
+            o.f(r.kr);
+            o.f(r.kt);
+            o.v3(r.r);
+            o.v3(r.t);
+        }
+        geo::PTLINED => {
+            let (a, b) = (i.v3(), i.v3());
+            o.f(ptlined(a, b, i.v3()));
+        }
+        geo::ROTATE => {
+            let (q, ang, p0) = (i.v3(), i.f(), i.v3());
+            o.v3(rotate(q, ang, p0, i.v3()));
+        }
+        geo::SPECULARBRDF => {
+            let (l, n, v) = (i.v3(), i.v3(), i.v3());
+            let r = specularbrdf(l, n, v, i.f());
+            o.v3(Vec3::splat(r));
+        }
+        geo::AREA => o.f(area(i.v3())),
+        geo::FILTERWIDTH_P => o.f(filterwidth_point(i.v3())),
+        geo::FILTERWIDTH => o.f(filterwidth(i.f())),
+        geo::MATMUL | geo::MATDIV => {
+            let a = i.m4();
+            let b = i.m4();
+            let b = if aux & 0xff == geo::MATDIV { b.inverse() } else { b };
+            o.m4(&(a * b));
+        }
+        geo::DETERMINANT => o.f(i.m4().determinant()),
+        geo::INVERSE => o.m4(&i.m4().inverse()),
+        geo::TRANSLATE => {
+            let m = i.m4();
+            o.m4(&(m * Matrix4::translate(i.v3())));
+        }
+        geo::ROTATE_M => {
+            let m = i.m4();
+            let a = i.f();
+            o.m4(&(m * Matrix4::rotate(a, i.v3())));
+        }
+        geo::SCALE_M => {
+            let m = i.m4();
+            o.m4(&(m * Matrix4::scale(i.v3())));
+        }
+        geo::XFORM_POINT => {
+            let m = i.m4();
+            o.v3(m.transform_point(i.v3()));
+        }
+        geo::XFORM_VECTOR => {
+            let m = i.m4();
+            o.v3(m.transform_vector(i.v3()));
+        }
+        geo::XFORM_NORMAL => {
+            let m = i.m4();
+            o.v3(m.transform_normal(i.v3()));
+        }
+        _ => {
+            let c = i.c3();
+            let space = |k: u32| COLOR_SPACES.get(k as usize).and_then(|n| ColorSpace::from_name(n));
+            let r = match (space((aux >> 8) & 0xff), space((aux >> 16) & 0xff)) {
+                (Some(f), Some(t)) => ctransform(f, t, c),
+                _ => c,
+            };
+            o.c3(r);
+        }
+    }
+}
+
+unsafe fn domain<F: JitFloat>(i: &mut In<F>, dims: u32) -> NoiseDomain<F> {
+    match dims {
+        1 => NoiseDomain::D1(i.f()),
+        2 => {
+            let x = i.f();
+            NoiseDomain::D2(x, i.f())
+        }
+        3 => NoiseDomain::D3(i.v3()),
+        _ => {
+            let p = i.v3();
+            NoiseDomain::D4(p, i.f())
+        }
+    }
+}
+
+/// The noise family, fBm and turbulence.
+pub unsafe extern "C" fn rt_noise<F: JitFloat>(
+    _: *mut c_void,
+    _: *const u32,
+    inp: *const f32,
+    out: *mut f32,
+    aux: u32,
+) {
+    let mut i = In::<F>::new(inp);
+    let mut o = Out::<F>::new(out);
+    let kind = aux & 0xf;
+    let dims = (aux >> 4) & 0xf;
+    let w = (aux >> 8) & 0xf;
+    let d = domain(&mut i, dims);
+    match kind {
+        nkind::NOISE | nkind::SNOISE => {
+            let signed = kind == nkind::SNOISE;
+            if w == 1 {
+                o.f(if signed { snoise(d) } else { anysl_core::prelude::noise(d) });
+            } else {
+                o.v3(if signed { vsnoise(d) } else { vnoise(d) });
+            }
+        }
+        nkind::CELL => {
+            if w == 1 {
+                o.f(cellnoise(d));
+            } else {
+                o.v3(vcellnoise(d));
+            }
+        }
+        nkind::PNOISE | nkind::PSNOISE => {
+            let per = domain(&mut i, dims);
+            let signed = kind == nkind::PSNOISE;
+            if w == 1 {
+                o.f(if signed { psnoise(d, per) } else { pnoise(d, per) });
+            } else {
+                let v = vpnoise(d, per);
+                o.v3(if signed { v * F::c(2.0) - Vec3::splat(F::c(1.0)) } else { v });
+            }
+        }
+        _ => {
+            let extra = (aux >> 12) & 0xf;
+            let mut get = |k: u32, dflt: f64| if extra > k { i.f().lane(0) } else { dflt };
+            let oct = get(0, 6.0).max(0.0) as u32;
+            let lac = get(1, 2.0);
+            let gain = get(2, 0.5);
+            o.f(if kind == nkind::FBM { fbm(d, oct, lac, gain) } else { turbulence(d, oct, lac, gain) });
+        }
+    }
+}
+
+/// `spline([basis,] x, knots…)`: `aux = n | basis << 8 | w << 16`.
+pub unsafe extern "C" fn rt_spline<F: JitFloat>(
+    _: *mut c_void,
+    _: *const u32,
+    inp: *const f32,
+    out: *mut f32,
+    aux: u32,
+) {
+    let mut i = In::<F>::new(inp);
+    let mut o = Out::<F>::new(out);
+    let n = (aux & 0xff) as usize;
+    let b = SPLINE_BASES
+        .get(((aux >> 8) & 0xff) as usize)
+        .and_then(|s| SplineBasis::from_name(s))
+        .unwrap_or(SplineBasis::CATMULL_ROM);
+    let w = (aux >> 16) & 0xff;
+    let x = i.f();
+    if w == 1 {
+        let mut knots = [F::c(0.0); 64];
+        for k in knots.iter_mut().take(n) {
+            *k = i.f();
+        }
+        o.f(spline(&b, x, &knots[..n.min(64)]));
+    } else {
+        let mut knots = [Vec3::splat(F::c(0.0)); 64];
+        for k in knots.iter_mut().take(n) {
+            *k = i.v3();
+        }
+        o.v3(spline(&b, x, &knots[..n.min(64)]));
+    }
+}
+
+/// The callbacks that need the renderer: a table per float type and context type, indexed by
+/// [`crate::abi::host`].
+pub struct HostTable<F, C, G>(PhantomData<(F, C, G)>);
+
+impl<F: ShadingFloat, C: ShadingContext<F>, G: JitFloat> HostTable<F, C, G> {
+    /// The table (indexed by [`crate::abi::host`]).
+    #[inline(always)]
+    #[must_use]
+    pub fn table() -> [usize; crate::abi::host::LEN] {
+        [
+            host_illuminance::<F, C, G> as *const () as usize,
+            host_ambient::<F, C, G> as *const () as usize,
+            host_diffuse::<F, C, G> as *const () as usize,
+            host_specular::<F, C, G> as *const () as usize,
+            host_phong::<F, C, G> as *const () as usize,
+            host_trace::<F, C, G> as *const () as usize,
+            host_du::<F, C, G> as *const () as usize,
+            host_dv::<F, C, G> as *const () as usize,
+            host_deriv::<F, C, G> as *const () as usize,
+            host_calcnormal::<F, C, G> as *const () as usize,
+            host_random::<F, C, G> as *const () as usize,
+        ]
+    }
+}
+
+const MAX_STRIDE: usize = 48;
+
+unsafe extern "C" fn host_illuminance<F: ShadingFloat, C: ShadingContext<F>, G: JitFloat>(
+    ctx: *mut c_void,
+    mask: *const u32,
+    inp: *const f32,
+    has_cone: u32,
+    cat: *const u8,
+    cat_len: usize,
+    body: BodyFn,
+    env: *mut u8,
+) {
+    let ctx = &mut *ctx.cast::<C>();
+    let m = cast::<G::Mask, F::Mask>(G::read_mask(mask));
+    let mut i = HIn::<F, G>::new(inp);
+    let p = i.v3();
+    let cone = if has_cone != 0 {
+        let a = i.v3();
+        Some((a, i.f()))
+    } else {
+        None
+    };
+    let category =
+        if cat_len == 0 { "" } else { core::str::from_utf8_unchecked(core::slice::from_raw_parts(cat, cat_len)) };
+    let mut e = Exec::with_mask(m);
+    ctx.illuminance(&mut e, category, p, cone, |e, l, cl| {
+        let mut buf = [0.0f32; 6 * MAX_STRIDE];
+        let mut o = HOut::<F, G>::new(buf.as_mut_ptr());
+        o.v3(l);
+        o.c3(cl);
+        let mut mb = [0u32; 16];
+        G::write_mask(cast::<F::Mask, G::Mask>(e.mask()), mb.as_mut_ptr());
+        body(env, mb.as_ptr(), buf.as_ptr());
+    });
+}
+
+unsafe extern "C" fn host_ambient<F: ShadingFloat, C: ShadingContext<F>, G: JitFloat>(
+    ctx: *mut c_void,
+    mask: *const u32,
+    _: *const f32,
+    out: *mut f32,
+    _: u32,
+) {
+    let ctx = &mut *ctx.cast::<C>();
+    let e = Exec::with_mask(cast::<G::Mask, F::Mask>(G::read_mask(mask)));
+    HOut::<F, G>::new(out).c3(ctx.ambient(&e));
+}
+
+unsafe extern "C" fn host_diffuse<F: ShadingFloat, C: ShadingContext<F>, G: JitFloat>(
+    ctx: *mut c_void,
+    mask: *const u32,
+    inp: *const f32,
+    out: *mut f32,
+    _: u32,
+) {
+    let ctx = &mut *ctx.cast::<C>();
+    let mut e = Exec::with_mask(cast::<G::Mask, F::Mask>(G::read_mask(mask)));
+    let n = HIn::<F, G>::new(inp).v3();
+    HOut::<F, G>::new(out).c3(diffuse(ctx, &mut e, n));
+}
+
+unsafe extern "C" fn host_specular<F: ShadingFloat, C: ShadingContext<F>, G: JitFloat>(
+    ctx: *mut c_void,
+    mask: *const u32,
+    inp: *const f32,
+    out: *mut f32,
+    _: u32,
+) {
+    let ctx = &mut *ctx.cast::<C>();
+    let mut e = Exec::with_mask(cast::<G::Mask, F::Mask>(G::read_mask(mask)));
+    let mut i = HIn::<F, G>::new(inp);
+    let (n, v, r) = (i.v3(), i.v3(), i.f());
+    HOut::<F, G>::new(out).c3(specular(ctx, &mut e, n, v, r));
+}
+
+unsafe extern "C" fn host_phong<F: ShadingFloat, C: ShadingContext<F>, G: JitFloat>(
+    ctx: *mut c_void,
+    mask: *const u32,
+    inp: *const f32,
+    out: *mut f32,
+    _: u32,
+) {
+    let ctx = &mut *ctx.cast::<C>();
+    let mut e = Exec::with_mask(cast::<G::Mask, F::Mask>(G::read_mask(mask)));
+    let mut i = HIn::<F, G>::new(inp);
+    let (n, v, r) = (i.v3(), i.v3(), i.f());
+    HOut::<F, G>::new(out).c3(phong(ctx, &mut e, n, v, r));
+}
+
+unsafe extern "C" fn host_trace<F: ShadingFloat, C: ShadingContext<F>, G: JitFloat>(
+    ctx: *mut c_void,
+    mask: *const u32,
+    inp: *const f32,
+    out: *mut f32,
+    _: u32,
+) {
+    let ctx = &mut *ctx.cast::<C>();
+    let e = Exec::with_mask(cast::<G::Mask, F::Mask>(G::read_mask(mask)));
+    let mut i = HIn::<F, G>::new(inp);
+    let (p, d) = (i.v3(), i.v3());
+    HOut::<F, G>::new(out).c3(ctx.trace(&e, p, d));
+}
+
+unsafe extern "C" fn host_du<F: ShadingFloat, C: ShadingContext<F>, G: JitFloat>(
+    ctx: *mut c_void,
+    _: *const u32,
+    inp: *const f32,
+    out: *mut f32,
+    aux: u32,
+) {
+    let g = *(*ctx.cast::<C>()).globals();
+    let mut i = HIn::<F, G>::new(inp);
+    let mut o = HOut::<F, G>::new(out);
+    for _ in 0..aux {
+        o.f(du(&g, i.f()));
+    }
+}
+
+unsafe extern "C" fn host_dv<F: ShadingFloat, C: ShadingContext<F>, G: JitFloat>(
+    ctx: *mut c_void,
+    _: *const u32,
+    inp: *const f32,
+    out: *mut f32,
+    aux: u32,
+) {
+    let g = *(*ctx.cast::<C>()).globals();
+    let mut i = HIn::<F, G>::new(inp);
+    let mut o = HOut::<F, G>::new(out);
+    for _ in 0..aux {
+        o.f(dv(&g, i.f()));
+    }
+}
+
+unsafe extern "C" fn host_deriv<F: ShadingFloat, C: ShadingContext<F>, G: JitFloat>(
+    ctx: *mut c_void,
+    _: *const u32,
+    inp: *const f32,
+    out: *mut f32,
+    aux: u32,
+) {
+    let g = *(*ctx.cast::<C>()).globals();
+    let mut i = HIn::<F, G>::new(inp);
+    let mut num = [F::c(0.0); 3];
+    for n in num.iter_mut().take(aux as usize) {
+        *n = i.f();
+    }
+    let den = i.f();
+    let mut o = HOut::<F, G>::new(out);
+    for n in num.iter().take(aux as usize) {
+        o.f(deriv(&g, *n, den));
+    }
+}
+
+unsafe extern "C" fn host_calcnormal<F: ShadingFloat, C: ShadingContext<F>, G: JitFloat>(
+    ctx: *mut c_void,
+    _: *const u32,
+    inp: *const f32,
+    out: *mut f32,
+    _: u32,
+) {
+    let g = *(*ctx.cast::<C>()).globals();
+    let p = HIn::<F, G>::new(inp).v3();
+    HOut::<F, G>::new(out).v3(calculatenormal(&g, p));
+}
+
+unsafe extern "C" fn host_random<F: ShadingFloat, C: ShadingContext<F>, G: JitFloat>(
+    ctx: *mut c_void,
+    _: *const u32,
+    _: *const f32,
+    out: *mut f32,
+    aux: u32,
+) {
+    let p = (*ctx.cast::<C>()).globals().P;
+    let mut o = HOut::<F, G>::new(out);
+    for c in 0..aux {
+        o.f(cellnoise(NoiseDomain::D4(p * F::c(1.0e4), F::c(f64::from(c) + 0.5))));
+    }
+}
+
+/// Reinterprets a value of one type as another type that is the same type (checked by
+/// `TypeId`): how code generic in the shading float reaches the layout of its `JitFloat`.
+#[inline(always)]
+pub fn cast<A: 'static, B: 'static>(a: A) -> B {
+    assert!(core::any::TypeId::of::<A>() == core::any::TypeId::of::<B>(), "cast between different types");
+    // SAFETY: A and B are the same type.
+    unsafe { core::mem::transmute_copy::<A, B>(&core::mem::ManuallyDrop::new(a)) }
+}
+
+/// [`In`] for host shims: reads `G` values and hands them out as `F` (the same type).
+struct HIn<F, G> {
+    i: In<G>,
+    _f: PhantomData<F>,
+}
+
+impl<F: ShadingFloat, G: JitFloat> HIn<F, G> {
+    #[inline(always)]
+    fn new(p: *const f32) -> Self {
+        Self { i: In::new(p), _f: PhantomData }
+    }
+    #[inline(always)]
+    unsafe fn f(&mut self) -> F {
+        cast::<G, F>(self.i.f())
+    }
+    #[inline(always)]
+    unsafe fn v3(&mut self) -> Vec3<F> {
+        let x = self.f();
+        let y = self.f();
+        let z = self.f();
+        Vec3::new(x, y, z)
+    }
+}
+
+/// [`Out`] for host shims.
+struct HOut<F, G> {
+    o: Out<G>,
+    _f: PhantomData<F>,
+}
+
+impl<F: ShadingFloat, G: JitFloat> HOut<F, G> {
+    #[inline(always)]
+    fn new(p: *mut f32) -> Self {
+        Self { o: Out::new(p), _f: PhantomData }
+    }
+    #[inline(always)]
+    unsafe fn f(&mut self, v: F) {
+        self.o.f(cast::<F, G>(v));
+    }
+    #[inline(always)]
+    unsafe fn v3(&mut self, v: Vec3<F>) {
+        self.f(v.x);
+        self.f(v.y);
+        self.f(v.z);
+    }
+    #[inline(always)]
+    unsafe fn c3(&mut self, c: Color<F>) {
+        self.f(c.r);
+        self.f(c.g);
+        self.f(c.b);
+    }
+}
+
+/// The context-free runtime functions for float type `F`, in the order of [`RtKind`].
+#[must_use]
+pub fn rt_table<F: JitFloat>() -> [RtFn; 5] {
+    [rt_un::<F>, rt_bin::<F>, rt_geo::<F>, rt_noise::<F>, rt_spline::<F>]
+}
+
+/// Which runtime function (index into [`rt_table`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum RtKind {
+    /// [`rt_un`]
+    Un = 0,
+    /// [`rt_bin`]
+    Bin = 1,
+    /// [`rt_geo`]
+    Geo = 2,
+    /// [`rt_noise`]
+    Noise = 3,
+    /// [`rt_spline`]
+    Spline = 4,
+}
