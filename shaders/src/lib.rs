@@ -34,6 +34,7 @@ mod common;
 pub mod dispatch;
 pub mod lights;
 pub mod native;
+pub mod rsl;
 pub mod surfaces;
 pub mod workload;
 

@@ -110,58 +110,65 @@ pub fn lookup<F: ShadingFloat>(
     g: Option<&Globals<F>>,
     k: usize,
 ) -> Color<F> {
-    if kind == Kind::Shadow {
-        return Color::zero();
+    match kind {
+        Kind::Shadow => Color::zero(),
+        Kind::Environment => match coords.first() {
+            Some(l) => sample_environment(name, fr.vec3(l.off(), k)),
+            None => Color::zero(),
+        },
+        Kind::Texture => match coords.len() {
+            0 => g.map_or_else(Color::zero, |g| sample_st(name, g.s, g.t)),
+            n if n >= 2 => sample_st(name, fr.get(coords[0].off(), k), fr.get(coords[1].off(), k)),
+            _ => Color::zero(),
+        },
     }
+}
+
+/// `environment(name, dir)` on a latitude-longitude map (black when the map is missing).
+/// Shared by the interpreter and generated Rust.
+pub fn sample_environment<F: ShadingFloat>(name: &str, dir: Vec3<F>) -> Color<F> {
     let Some(img) = image(name) else { return Color::zero() };
     let lanes = F::LANES;
     let mut out = [vec![0.0f64; lanes], vec![0.0f64; lanes], vec![0.0f64; lanes]];
-    match kind {
-        Kind::Environment => {
-            let Some(l) = coords.first() else { return Color::zero() };
-            let dir = fr.vec3(l.off(), k);
-            for i in 0..lanes {
-                let (x, y, z) = (dir.x.lane(i), dir.y.lane(i), dir.z.lane(i));
-                let len = (x * x + y * y + z * z).sqrt().max(1e-30);
-                let s = 0.5 + z.atan2(x) / (2.0 * std::f64::consts::PI);
-                let t = (y / len).clamp(-1.0, 1.0).acos() / std::f64::consts::PI;
-                let c = img.bilinear(s, t);
+    for i in 0..lanes {
+        let (x, y, z) = (dir.x.lane(i), dir.y.lane(i), dir.z.lane(i));
+        let len = (x * x + y * y + z * z).sqrt().max(1e-30);
+        let s = 0.5 + z.atan2(x) / (2.0 * std::f64::consts::PI);
+        let t = (y / len).clamp(-1.0, 1.0).acos() / std::f64::consts::PI;
+        let c = img.bilinear(s, t);
+        for j in 0..3 {
+            out[j][i] = c[j];
+        }
+    }
+    Color::new(F::from_lanes(&out[0]), F::from_lanes(&out[1]), F::from_lanes(&out[2]))
+}
+
+/// `texture(name, s, t)`, box-filtered over the footprint of `(s, t)` (black when the image
+/// is missing). Shared by the interpreter and generated Rust.
+pub fn sample_st<F: ShadingFloat>(name: &str, s: F, t: F) -> Color<F> {
+    let Some(img) = image(name) else { return Color::zero() };
+    let lanes = F::LANES;
+    let mut out = [vec![0.0f64; lanes], vec![0.0f64; lanes], vec![0.0f64; lanes]];
+    let (ws, wt) = (filterwidth(s), filterwidth(t));
+    for i in 0..lanes {
+        let (sv, tv) = (s.lane(i), t.lane(i));
+        let (fw, fh) = (ws.lane(i).abs(), wt.lane(i).abs());
+        let taps_s = ((fw * img.w as f64).ceil() as usize).clamp(1, 4);
+        let taps_t = ((fh * img.h as f64).ceil() as usize).clamp(1, 4);
+        let mut acc = [0.0; 3];
+        for a in 0..taps_s {
+            for b in 0..taps_t {
+                let os = if taps_s > 1 { ((a as f64 + 0.5) / taps_s as f64 - 0.5) * fw } else { 0.0 };
+                let ot = if taps_t > 1 { ((b as f64 + 0.5) / taps_t as f64 - 0.5) * fh } else { 0.0 };
+                let c = img.bilinear(sv + os, tv + ot);
                 for j in 0..3 {
-                    out[j][i] = c[j];
+                    acc[j] += c[j];
                 }
             }
         }
-        _ => {
-            let (s, t) = match coords.len() {
-                0 => match g {
-                    Some(g) => (g.s, g.t),
-                    None => return Color::zero(),
-                },
-                _ if coords.len() >= 2 => (fr.get(coords[0].off(), k), fr.get(coords[1].off(), k)),
-                _ => return Color::zero(),
-            };
-            let (ws, wt) = (filterwidth(s), filterwidth(t));
-            for i in 0..lanes {
-                let (sv, tv) = (s.lane(i), t.lane(i));
-                let (fw, fh) = (ws.lane(i).abs(), wt.lane(i).abs());
-                let taps_s = ((fw * img.w as f64).ceil() as usize).clamp(1, 4);
-                let taps_t = ((fh * img.h as f64).ceil() as usize).clamp(1, 4);
-                let mut acc = [0.0; 3];
-                for a in 0..taps_s {
-                    for b in 0..taps_t {
-                        let os = if taps_s > 1 { ((a as f64 + 0.5) / taps_s as f64 - 0.5) * fw } else { 0.0 };
-                        let ot = if taps_t > 1 { ((b as f64 + 0.5) / taps_t as f64 - 0.5) * fh } else { 0.0 };
-                        let c = img.bilinear(sv + os, tv + ot);
-                        for j in 0..3 {
-                            acc[j] += c[j];
-                        }
-                    }
-                }
-                let n = (taps_s * taps_t) as f64;
-                for j in 0..3 {
-                    out[j][i] = acc[j] / n;
-                }
-            }
+        let n = (taps_s * taps_t) as f64;
+        for j in 0..3 {
+            out[j][i] = acc[j] / n;
         }
     }
     Color::new(F::from_lanes(&out[0]), F::from_lanes(&out[1]), F::from_lanes(&out[2]))
