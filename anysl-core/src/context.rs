@@ -286,6 +286,7 @@ pub trait ShadingContext<F: ShadingFloat> {
 pub fn run_illuminance<F, L, V, B>(
     lights: &[L],
     e: &mut Exec<F>,
+    category: &str,
     p: Vec3<F>,
     cone: Option<(Vec3<F>, F)>,
     mut visibility: V,
@@ -299,6 +300,9 @@ pub fn run_illuminance<F, L, V, B>(
     let cone = cone.map(|(axis, angle)| ConeTest::new(axis, angle));
     for light in lights {
         if light.emission() == Some(Emission::Ambient) {
+            continue;
+        }
+        if !category.is_empty() && !crate::shader::category_matches(light.category(), category) {
             continue;
         }
         let out = light.light(e, p);
@@ -380,12 +384,12 @@ impl<F: ShadingFloat, L: LightShader> ShadingContext<F> for PointContext<'_, F, 
     fn illuminance<B: FnMut(&mut Exec<F>, Vec3<F>, Color<F>)>(
         &mut self,
         e: &mut Exec<F>,
-        _category: &str,
+        category: &str,
         p: Vec3<F>,
         cone: Option<(Vec3<F>, F)>,
         body: B,
     ) {
-        run_illuminance(self.lights, e, p, cone, |_, _, _| None, body);
+        run_illuminance(self.lights, e, category, p, cone, |_, _, _| None, body);
     }
 
     #[inline(always)]

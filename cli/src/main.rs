@@ -1,9 +1,11 @@
 //! The `anysl` command-line tool.
 
 mod demo;
+mod interp_bench;
 mod kernels;
 mod native;
 mod render;
+mod rslc;
 mod table1;
 mod workload;
 
@@ -33,6 +35,11 @@ enum Command {
     },
     /// Render one picture of a scene preset with one shader and renderer.
     Render(render::RenderArgs),
+    /// The RenderMan Shading Language compiler: check, info, ir, rust, eval.
+    Rslc {
+        #[command(subcommand)]
+        cmd: rslc::RslcCommand,
+    },
     /// Benchmarks.
     Bench {
         #[command(subcommand)]
@@ -75,6 +82,22 @@ enum BenchCommand {
         /// Timed runs per row (medians reported).
         #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u32).range(1..=1000))]
         runs: u32,
+    },
+    /// The batched interpreter's points/s at batch sizes 1, 16, 256, 4096 against compiled
+    /// Rust f32 and f32x8, with max abs error against f64, on the Table-1 `.sl` shaders.
+    Interp {
+        /// Also write the rows as JSON to this file.
+        #[arg(long)]
+        json: Option<PathBuf>,
+        /// Shading points per run (rounded up to a multiple of 4096).
+        #[arg(long, default_value_t = 16384)]
+        points: usize,
+        /// Timed runs per row (the median is reported).
+        #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u32).range(1..=1000))]
+        runs: u32,
+        /// Only these shaders (repeatable).
+        #[arg(long = "shader")]
+        shaders: Vec<String>,
     },
     /// The shared shading workload (`shaders/assets/workload_ref/shading_workload.md`): four
     /// shaders on a 512×512 sphere image per system and thread count, as the document's TSV,
@@ -160,11 +183,31 @@ fn bench_workload(opts: &workload::WorkloadOpts, json: Option<PathBuf>) -> Resul
     Ok(())
 }
 
+fn bench_interp(opts: &interp_bench::InterpOpts, json: Option<PathBuf>) -> Result<(), String> {
+    if opts.points == 0 {
+        return Err("--points must be at least 1".into());
+    }
+    let pb = progress_bar(std::io::IsTerminal::is_terminal(&std::io::stderr()));
+    let rows = interp_bench::run(opts, &pb)?;
+    pb.finish_and_clear();
+    interp_bench::print_table(&rows);
+    if let Some(path) = json {
+        let text = serde_json::to_string_pretty(&rows).map_err(|e| e.to_string())?;
+        std::fs::write(&path, text).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+        println!("rows written to {}", path.display());
+    }
+    Ok(())
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Demo { out } => demo(&out),
         Command::Render(args) => render::run(&args),
+        Command::Rslc { cmd } => match rslc::run(&cmd) {
+            Ok(code) => return ExitCode::from(code),
+            Err(e) => Err(e),
+        },
         Command::Bench { which } => match which {
             BenchCommand::Kernels {
                 json,
@@ -210,6 +253,19 @@ fn main() -> ExitCode {
                     runs: runs as usize,
                     shaders,
                     systems,
+                },
+                json,
+            ),
+            BenchCommand::Interp {
+                json,
+                points,
+                runs,
+                shaders,
+            } => bench_interp(
+                &interp_bench::InterpOpts {
+                    points,
+                    runs: runs as usize,
+                    shaders,
                 },
                 json,
             ),

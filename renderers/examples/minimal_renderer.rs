@@ -32,12 +32,12 @@ impl<F: ShadingFloat> ShadingContext<F> for Tiny<'_, F> {
     fn illuminance<B: FnMut(&mut Exec<F>, Vec3<F>, Color<F>)>(
         &mut self,
         e: &mut Exec<F>,
-        _category: &str,
+        category: &str,
         p: Vec3<F>,
         cone: Option<(Vec3<F>, F)>,
         body: B,
     ) {
-        run_illuminance(self.lights, e, p, cone, |_, _, _| None, body);
+        run_illuminance(self.lights, e, category, p, cone, |_, _, _| None, body);
     }
     fn ambient(&mut self, e: &Exec<F>) -> Color<F> {
         sum_ambient(self.lights, e, self.globals.P)

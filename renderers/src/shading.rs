@@ -531,7 +531,7 @@ impl<F: ShadingFloat, S: SurfaceShader, L: LightShader> ShadingContext<F> for Sc
     fn illuminance<B: FnMut(&mut Exec<F>, Vec3<F>, Color<F>)>(
         &mut self,
         e: &mut Exec<F>,
-        _category: &str,
+        category: &str,
         p: Vec3<F>,
         cone: Option<(Vec3<F>, F)>,
         body: B,
@@ -540,6 +540,7 @@ impl<F: ShadingFloat, S: SurfaceShader, L: LightShader> ShadingContext<F> for Sc
         run_illuminance(
             &tracer.scene.lights,
             e,
+            category,
             p,
             cone,
             |mask, p, out| {

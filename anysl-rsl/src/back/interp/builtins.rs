@@ -717,7 +717,8 @@ pub fn call<F: ShadingFloat, C: ShadingContext<F>>(
             let s = format_rsl(fr, args, k);
             if matches!(f, Bi::Printf) {
                 if m.any() {
-                    print!("{s}");
+                    // stderr: stdout stays machine-readable (`rslc eval` prints JSON there).
+                    eprint!("{s}");
                 }
             } else if let Loc::Str(i, _) = dst {
                 fr.s[i as usize] = s;
@@ -740,7 +741,8 @@ pub fn call<F: ShadingFloat, C: ShadingContext<F>>(
     }
 }
 
-/// `format`/`printf`: `%f %g %d %s %c %p %m %%` (numbers print lane 0; triples as `x y z`).
+/// `format`/`printf`: C-style conversions `%f %e %g %d %i %s %c %p %m %%` with flags, width and
+/// precision (numbers print lane 0; triples as `x y z`, matrices as 16 numbers).
 fn format_rsl<F: ShadingFloat>(fr: &Frame<F>, args: &[Loc], k: usize) -> String {
     let fmt = space_str(fr, args[0]).to_string();
     let mut out = String::new();
@@ -751,33 +753,77 @@ fn format_rsl<F: ShadingFloat>(fr: &Frame<F>, args: &[Loc], k: usize) -> String 
             out.push(c);
             continue;
         }
-        // Skip flags/width/precision.
-        let mut spec = String::new();
+        let mut left = false;
+        let mut plus = false;
+        let mut zero = false;
         while let Some(&p) = chars.peek() {
-            if p.is_ascii_digit() || p == '.' || p == '-' || p == '+' {
-                spec.push(p);
-                chars.next();
-            } else {
-                break;
+            match p {
+                '-' => left = true,
+                '+' => plus = true,
+                '0' => zero = true,
+                ' ' | '#' => {}
+                _ => break,
             }
+            chars.next();
         }
-        match chars.next() {
-            Some('%') => out.push('%'),
-            Some(_) => {
-                if let Some(l) = args.get(next) {
-                    match *l {
-                        Loc::Str(i, _) => out.push_str(&fr.s[i as usize]),
-                        Loc::Num { off, width } => {
-                            let parts: Vec<String> =
-                                (0..width).map(|c| format!("{}", fr.get(off + c, k).lane(0))).collect();
-                            out.push_str(&parts.join(" "));
-                        }
-                        _ => {}
+        let mut width = String::new();
+        while let Some(&p) = chars.peek().filter(|p| p.is_ascii_digit()) {
+            width.push(p);
+            chars.next();
+        }
+        let mut prec: Option<usize> = None;
+        if chars.peek() == Some(&'.') {
+            chars.next();
+            let mut p = String::new();
+            while let Some(&d) = chars.peek().filter(|d| d.is_ascii_digit()) {
+                p.push(d);
+                chars.next();
+            }
+            prec = Some(p.parse().unwrap_or(0));
+        }
+        let Some(conv) = chars.next() else {
+            out.push('%');
+            break;
+        };
+        if conv == '%' {
+            out.push('%');
+            continue;
+        }
+        let num = |x: f64| -> String {
+            let s = match conv {
+                'd' | 'i' => format!("{}", x.trunc() as i64),
+                'e' | 'E' => format!("{:.*e}", prec.unwrap_or(6), x),
+                'g' | 'G' => {
+                    let p = prec.unwrap_or(6).max(1);
+                    let e = if x == 0.0 { 0 } else { x.abs().log10().floor() as i32 };
+                    if e < -4 || e >= p as i32 {
+                        format!("{:.*e}", p - 1, x)
+                    } else {
+                        let s = format!("{:.*}", (p as i32 - 1 - e).max(0) as usize, x);
+                        if s.contains('.') { s.trim_end_matches('0').trim_end_matches('.').to_string() } else { s }
                     }
                 }
-                next += 1;
+                _ => format!("{:.*}", prec.unwrap_or(6), x),
+            };
+            if plus && x >= 0.0 { format!("+{s}") } else { s }
+        };
+        let text = match args.get(next) {
+            Some(Loc::Str(i, _)) => fr.s[*i as usize].clone(),
+            Some(Loc::Num { off, width }) => {
+                let parts: Vec<String> = (0..*width).map(|c| num(fr.get(off + c, k).lane(0))).collect();
+                parts.join(" ")
             }
-            None => out.push('%'),
+            _ => String::new(),
+        };
+        next += 1;
+        let w: usize = width.parse().unwrap_or(0);
+        let pad = w.saturating_sub(text.chars().count());
+        if left {
+            out.push_str(&text);
+            out.push_str(&" ".repeat(pad));
+        } else {
+            out.push_str(&(if zero { "0" } else { " " }).repeat(pad));
+            out.push_str(&text);
         }
     }
     out

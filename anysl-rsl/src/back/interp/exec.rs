@@ -618,7 +618,14 @@ fn exec_op<F: ShadingFloat, C: ShadingContext<F>>(
                 let e = (fr.get(idx, k).lane(0).max(0.0) as u32).min(len.saturating_sub(1));
                 fr.s[dst as usize] = fr.s[(base + e) as usize].clone();
             }
-            Code::FromSpace { dst, space, src, color } => {
+            Code::FromSpace { dst, space: _, src, color: false, w } if w != 3 => {
+                // A matrix in a named space: every space is the shading space here.
+                for c in 0..w {
+                    let v = fr.get(src + c, k);
+                    fr.set(dst + c, k, v);
+                }
+            }
+            Code::FromSpace { dst, space, src, color, .. } => {
                 let v = fr.vec3(src, k);
                 let out = if color {
                     let c = Color::new(v.x, v.y, v.z);
@@ -895,6 +902,13 @@ impl<F: ShadingFloat> ShadingContext<F> for LightCtx<F> {
 }
 
 impl LightShader for InterpLight {
+    fn category(&self) -> &str {
+        match self.program.module.params.iter().position(|p| p.name == "__category").map(|i| &self.values[i]) {
+            Some(Const::Str(s)) => s,
+            _ => "",
+        }
+    }
+
     fn emission(&self) -> Option<Emission> {
         let mut has_illuminate = false;
         let mut has_solar = false;

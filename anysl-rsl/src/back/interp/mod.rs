@@ -16,5 +16,5 @@ pub mod exec;
 mod prepare;
 pub mod texture;
 
-pub use exec::{run_batch, InterpLight, InterpShader};
-pub use prepare::{PrepareError, Program};
+pub use exec::{release, run_batch, Frame, InterpLight, InterpShader};
+pub use prepare::{Loc, PrepareError, Program};

@@ -114,7 +114,7 @@ pub enum Code {
     LoadElemStr { dst: u32, base: u32, len: u32, idx: u32 },
     /// Colour from a named colour space (`color "hsv" (…)`), or a triple from a coordinate
     /// space (all coordinate spaces are the shading space in these renderers).
-    FromSpace { dst: u32, space: u32, src: u32, color: bool },
+    FromSpace { dst: u32, space: u32, src: u32, color: bool, w: u32 },
     /// A built-in call.
     Call { f: Bi, dst: Loc, args: Vec<Loc>, outs: Vec<Option<Loc>> },
 }
@@ -503,7 +503,13 @@ impl Cx<'_> {
                 let Loc::Str(space, _) = arg(0) else {
                     return Err(unsupported());
                 };
-                Code::FromSpace { dst: dst.off(), space, src: arg(1).off(), color: inst.ty.base == BaseType::Color }
+                Code::FromSpace {
+                    dst: dst.off(),
+                    space,
+                    src: arg(1).off(),
+                    color: inst.ty.base == BaseType::Color,
+                    w: dst.width(),
+                }
             }
             Op::Call { name, outputs, .. } => {
                 let arg_tys: Vec<(BaseType, Option<u32>)> = inst

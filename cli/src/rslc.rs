@@ -1,0 +1,478 @@
+//! `anysl rslc …`: the RenderMan Shading Language compiler driver — check, info (like
+//! `sloinfo`), ir, rust, and eval (like OSL's `testshade`).
+
+use anysl_ad::Dual;
+use anysl_core::prelude::*;
+use anysl_core::{ParamValue, PointContext};
+use anysl_rsl::back::interp::{run_batch, InterpShader, Program};
+use anysl_rsl::ir::{Const, Global, Module};
+use anysl_rsl::passes::{optimize, PassOptions};
+use anysl_rsl::types::BaseType;
+use anysl_rsl::{CompileOptions, Compiled};
+use anysl_shaders::{table1_lights, Light};
+use clap::{Args, Subcommand, ValueEnum};
+use serde_json::{json, Value as Json};
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+/// Options every command that reads `.sl` takes.
+#[derive(Args, Debug, Clone, Default)]
+pub struct SlOptions {
+    /// Add a directory to the `#include` search path (repeatable; the file's own directory is
+    /// searched first).
+    #[arg(short = 'I', value_name = "DIR")]
+    pub include: Vec<PathBuf>,
+    /// Define a preprocessor macro, `NAME` or `NAME=VALUE` (repeatable).
+    #[arg(short = 'D', value_name = "NAME[=VALUE]")]
+    pub define: Vec<String>,
+}
+
+impl SlOptions {
+    /// The compiler options.
+    pub fn compile_options(&self) -> CompileOptions {
+        CompileOptions {
+            include_dirs: self.include.clone(),
+            defines: self
+                .define
+                .iter()
+                .map(|d| match d.split_once('=') {
+                    Some((n, v)) => (n.to_string(), Some(v.to_string())),
+                    None => (d.clone(), None),
+                })
+                .collect(),
+            ..CompileOptions::default()
+        }
+    }
+}
+
+/// The back ends `rslc eval` can run.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum EvalBackend {
+    /// The batched interpreter.
+    Interp,
+    /// The compiled (monomorphized) shader of the same name from the shader collection.
+    Aot,
+    /// The LLVM JIT.
+    Jit,
+}
+
+/// `anysl rslc` subcommands.
+#[derive(Subcommand, Debug)]
+pub enum RslcCommand {
+    /// Check files for errors; prints diagnostics, exit status 1 when any file has errors.
+    Check {
+        /// `.sl` files.
+        #[arg(required = true)]
+        files: Vec<PathBuf>,
+        #[command(flatten)]
+        sl: SlOptions,
+    },
+    /// The shader's parameters as JSON (like `sloinfo`).
+    Info {
+        /// A `.sl` file.
+        file: PathBuf,
+        #[command(flatten)]
+        sl: SlOptions,
+    },
+    /// Print the optimized IR (with `--set`, specialized to those parameter values).
+    Ir {
+        /// A `.sl` file.
+        file: PathBuf,
+        /// Specialize a uniform parameter, `NAME=VALUE` (repeatable).
+        #[arg(long = "set", value_name = "NAME=VALUE")]
+        set: Vec<String>,
+        /// Print the IR as lowered, without optimization passes.
+        #[arg(long)]
+        no_opt: bool,
+        #[command(flatten)]
+        sl: SlOptions,
+    },
+    /// Print the generated Rust for the shader.
+    Rust {
+        /// A `.sl` file.
+        file: PathBuf,
+        #[command(flatten)]
+        sl: SlOptions,
+    },
+    /// Run the shader on a grid of shading points and print every output as JSON.
+    Eval {
+        /// A `.sl` file.
+        file: PathBuf,
+        /// Back end.
+        #[arg(long, value_enum, default_value_t = EvalBackend::Interp)]
+        backend: EvalBackend,
+        /// Set a parameter, `NAME=VALUE` (repeatable; triples as `a,b,c`).
+        #[arg(long = "set", value_name = "NAME=VALUE")]
+        set: Vec<String>,
+        /// Override a global, `NAME=VALUE` (repeatable): P, N, Ng, I, E, s, t, u, v, du, dv,
+        /// dPdu, dPdv, Cs, Os.
+        #[arg(long = "global", value_name = "NAME=VALUE")]
+        global: Vec<String>,
+        /// Grid size `WxH` (default 1x1).
+        #[arg(long, default_value = "1x1")]
+        grid: String,
+        /// No scene lights (default: the table1 lights).
+        #[arg(long)]
+        no_lights: bool,
+        #[command(flatten)]
+        sl: SlOptions,
+    },
+}
+
+/// Compiles a file; on errors prints the rendered diagnostics and returns `Err`.
+pub fn compile(file: &Path, sl: &SlOptions) -> Result<Compiled, String> {
+    match anysl_rsl::compile_file(file, &sl.compile_options()) {
+        Ok(c) => {
+            if !c.warnings.items.is_empty() {
+                eprint!("{}", c.warnings.render(&c.sources));
+            }
+            Ok(c)
+        }
+        Err(e) => Err(format!("{e}{} error(s) in {}", e.diags.error_count(), file.display())),
+    }
+}
+
+fn parse_triple(text: &str) -> Option<Vec<f64>> {
+    let v: Result<Vec<f64>, _> = text.split(',').map(|x| x.trim().parse::<f64>()).collect();
+    v.ok().filter(|v| v.len() == 1 || v.len() == 3 || v.len() == 16)
+}
+
+/// Parses `NAME=VALUE` parameter settings against the module's parameters.
+pub fn parse_sets(m: &Module, sets: &[String]) -> Result<Vec<(String, Const)>, String> {
+    let mut out = Vec::new();
+    for s in sets {
+        let (name, text) =
+            s.split_once('=').ok_or_else(|| format!("--set {s:?}: expected NAME=VALUE, e.g. --set Ks=0.5"))?;
+        let name = name.trim();
+        let p = m.params.iter().find(|p| p.name == name).ok_or_else(|| {
+            let known: Vec<&str> = m.params.iter().map(|p| p.name.as_str()).collect();
+            format!("--set {name}: shader '{}' has no parameter '{name}' (parameters: {})", m.name, known.join(", "))
+        })?;
+        let c = match p.ty.base {
+            BaseType::String => Const::Str(text.to_string()),
+            b => {
+                let v = parse_triple(text)
+                    .ok_or_else(|| format!("--set {name}={text}: expected a number or a comma-separated triple"))?;
+                match (b, v.len()) {
+                    (BaseType::Float, 1) => Const::Float(v[0]),
+                    (t, 1) if t.is_triple() => Const::Triple([v[0]; 3]),
+                    (t, 3) if t.is_triple() => Const::Triple([v[0], v[1], v[2]]),
+                    (BaseType::Matrix, 16) => {
+                        let mut a = [0.0; 16];
+                        a.copy_from_slice(&v);
+                        Const::Matrix(a)
+                    }
+                    _ => return Err(format!("--set {name}={text}: parameter '{name}' is a {}", p.ty.base)),
+                }
+            }
+        };
+        out.push((name.to_string(), c));
+    }
+    Ok(out)
+}
+
+fn const_json(c: &Const) -> Json {
+    match c {
+        Const::Float(x) => json!(x),
+        Const::Triple(t) => json!(t),
+        Const::Matrix(m) => json!(m.to_vec()),
+        Const::Str(s) => json!(s),
+        Const::Array(v) => Json::Array(v.iter().map(const_json).collect()),
+    }
+}
+
+/// The `sloinfo`-like description of a shader.
+pub fn info_json(m: &Module, uses_derivatives: bool) -> Json {
+    json!({
+        "name": m.name,
+        "type": format!("{:?}", m.kind).to_lowercase(),
+        "uses_derivatives": uses_derivatives,
+        "params": m.params.iter().map(|p| json!({
+            "name": p.name,
+            "type": p.ty.base.name(),
+            "detail": p.ty.detail.to_string(),
+            "array": p.ty.array,
+            "output": p.output,
+            "default": const_json(&p.default),
+        })).collect::<Vec<_>>(),
+    })
+}
+
+/// Runs an `rslc` command; returns the process exit code.
+pub fn run(cmd: &RslcCommand) -> Result<u8, String> {
+    match cmd {
+        RslcCommand::Check { files, sl } => {
+            let mut failed = 0;
+            for f in files {
+                match anysl_rsl::compile_file(f, &sl.compile_options()) {
+                    Ok(c) => {
+                        if !c.warnings.items.is_empty() {
+                            eprint!("{}", c.warnings.render(&c.sources));
+                        }
+                        println!("{}: ok ({} `{}`)", f.display(), format!("{:?}", c.module.kind).to_lowercase(), c.module.name);
+                    }
+                    Err(e) => {
+                        failed += 1;
+                        eprint!("{e}");
+                        eprintln!("{}: {} error(s)", f.display(), e.diags.error_count());
+                    }
+                }
+            }
+            if files.len() > 1 {
+                println!("{} of {} files clean", files.len() - failed, files.len());
+            }
+            Ok(u8::from(failed > 0))
+        }
+        RslcCommand::Info { file, sl } => {
+            let c = compile(file, sl)?;
+            let mut m = c.module;
+            let report = optimize(&mut m, &PassOptions::default());
+            println!("{}", serde_json::to_string_pretty(&info_json(&m, report.uses_derivatives)).map_err(|e| e.to_string())?);
+            Ok(0)
+        }
+        RslcCommand::Ir { file, set, no_opt, sl } => {
+            let c = compile(file, sl)?;
+            let mut m = c.module;
+            let values = parse_sets(&m, set)?;
+            if *no_opt {
+                print!("{m}");
+                return Ok(0);
+            }
+            let report = optimize(&mut m, &PassOptions { specialize: values, ..PassOptions::default() });
+            print!("{m}");
+            let stages: Vec<String> = report.stages.iter().map(|(s, n)| format!("{s} {n}")).collect();
+            println!("; instructions by stage: {}", stages.join(" → "));
+            println!("; uses derivatives: {}", report.uses_derivatives);
+            Ok(0)
+        }
+        RslcCommand::Rust { file, sl } => {
+            let c = compile(file, sl)?;
+            let mut m = c.module;
+            optimize(&mut m, &PassOptions::default());
+            let _ = m;
+            Err("rslc rust: the Rust back end is not wired yet".into())
+        }
+        RslcCommand::Eval { file, backend, set, global, grid, no_lights, sl } => {
+            let c = compile(file, sl)?;
+            let out = eval(c.module, *backend, set, global, grid, *no_lights)?;
+            println!("{}", serde_json::to_string_pretty(&out).map_err(|e| e.to_string())?);
+            Ok(0)
+        }
+    }
+}
+
+/// Parses `WxH`.
+fn parse_grid(grid: &str) -> Result<(usize, usize), String> {
+    let (w, h) = grid.split_once(['x', 'X']).ok_or_else(|| format!("--grid {grid}: expected WxH, e.g. 4x4"))?;
+    let w: usize = w.trim().parse().map_err(|_| format!("--grid {grid}: bad width"))?;
+    let h: usize = h.trim().parse().map_err(|_| format!("--grid {grid}: bad height"))?;
+    if w == 0 || h == 0 || w * h > 1 << 24 {
+        return Err(format!("--grid {grid}: expected 1 ≤ W·H ≤ 16777216"));
+    }
+    Ok((w, h))
+}
+
+/// A global override.
+#[derive(Clone, Debug)]
+pub struct GlobalSet {
+    name: String,
+    vals: Vec<f64>,
+}
+
+fn parse_globals(globals: &[String]) -> Result<Vec<GlobalSet>, String> {
+    const NAMES: [&str; 15] = ["P", "N", "Ng", "I", "E", "s", "t", "u", "v", "du", "dv", "dPdu", "dPdv", "Cs", "Os"];
+    globals
+        .iter()
+        .map(|g| {
+            let (name, text) = g.split_once('=').ok_or_else(|| format!("--global {g:?}: expected NAME=VALUE"))?;
+            let name = name.trim();
+            if !NAMES.contains(&name) {
+                return Err(format!("--global {name}: unknown global (choices: {})", NAMES.join(", ")));
+            }
+            let vals = parse_triple(text).filter(|v| v.len() <= 3).ok_or_else(|| {
+                format!("--global {name}={text}: expected a number or a comma-separated triple")
+            })?;
+            let triple = !matches!(name, "s" | "t" | "u" | "v" | "du" | "dv");
+            if triple != (vals.len() == 3) && !(triple && vals.len() == 1) {
+                return Err(format!("--global {name}={text}: {name} is a {}", if triple { "triple" } else { "float" }));
+            }
+            Ok(GlobalSet { name: name.to_string(), vals })
+        })
+        .collect()
+}
+
+/// The eval harness's globals for grid point `(i, j)` of `w × h` (see tests/rsl/README.md):
+/// `u = (i + ½)/w`, `v = (j + ½)/h`, `s = u`, `t = v`, `du = 1/w`, `dv = 1/h`, `P = (u, v, 0)`,
+/// `N = Ng = (0, 0, 1)`, `E = (0, 0, 3)`, `I = P − E`, `dPdu = (1, 0, 0)`, `dPdv = (0, 1, 0)`,
+/// `Cs = Os = 1`. Screen x follows u and y follows v, one grid step per pixel, so with
+/// dual numbers `∂u/∂x = du`, `∂v/∂y = dv`. Overrides replace values (constant over the grid).
+pub fn eval_globals<F: ShadingFloat>(i: usize, j: usize, w: usize, h: usize, sets: &[GlobalSet]) -> Globals<F> {
+    let (du_, dv_) = (1.0 / w as f64, 1.0 / h as f64);
+    let (uu, vv) = ((i as f64 + 0.5) * du_, (j as f64 + 0.5) * dv_);
+    let z = F::c(0.0);
+    let u = F::c(uu).with_derivs(F::c(du_), z);
+    let v = F::c(vv).with_derivs(z, F::c(dv_));
+    let p = Vec3::new(u, v, z);
+    let e = Vec3::c(0.0, 0.0, 3.0);
+    let mut g = Globals {
+        P: p,
+        N: Vec3::c(0.0, 0.0, 1.0),
+        Ng: Vec3::c(0.0, 0.0, 1.0),
+        I: p - e,
+        E: e,
+        s: u,
+        t: v,
+        u,
+        v,
+        du: F::c(du_),
+        dv: F::c(dv_),
+        dPdu: Vec3::c(1.0, 0.0, 0.0),
+        dPdv: Vec3::c(0.0, 1.0, 0.0),
+        Cs: Color::c(1.0, 1.0, 1.0),
+        Os: Color::c(1.0, 1.0, 1.0),
+    };
+    for s in sets {
+        let t = |k: usize| F::c(s.vals[k.min(s.vals.len() - 1)]);
+        let v3 = Vec3::new(t(0), t(1), t(2));
+        let c3 = Color::new(t(0), t(1), t(2));
+        match s.name.as_str() {
+            "P" => {
+                g.P = v3;
+                g.I = v3 - g.E;
+            }
+            "N" => g.N = v3,
+            "Ng" => g.Ng = v3,
+            "I" => g.I = v3,
+            "E" => g.E = v3,
+            "dPdu" => g.dPdu = v3,
+            "dPdv" => g.dPdv = v3,
+            "Cs" => g.Cs = c3,
+            "Os" => g.Os = c3,
+            "s" => g.s = t(0),
+            "t" => g.t = t(0),
+            "u" => g.u = t(0),
+            "v" => g.v = t(0),
+            "du" => g.du = t(0),
+            "dv" => g.dv = t(0),
+            _ => {}
+        }
+    }
+    g
+}
+
+fn lane_vals<F: ShadingFloat>(v: &[F]) -> Vec<f64> {
+    v.iter().map(|x| x.lane(0)).collect()
+}
+
+fn json_vals(v: &[f64]) -> Json {
+    if v.len() == 1 {
+        json!(v[0])
+    } else {
+        json!(v)
+    }
+}
+
+/// Runs the interpreter over the grid with float type `F`.
+fn eval_interp<F: ShadingFloat>(
+    prog: &Program,
+    values: &[Const],
+    w: usize,
+    h: usize,
+    sets: &[GlobalSet],
+    lights: &[Light],
+) -> Vec<Json> {
+    let mut points = Vec::new();
+    for j in 0..h {
+        for i in 0..w {
+            let mut ctx = [PointContext::new(eval_globals::<F>(i, j, w, h, sets), lights)];
+            let fr = run_batch::<F, _>(prog, values, &mut ctx, &[F::Mask::splat(true)]);
+            let read = |g: Global| prog.global_loc(g).map(|l| lane_vals(&fr.read(l, 0)));
+            let ci = read(Global::Ci).unwrap_or_else(|| vec![0.0; 3]);
+            let oi = read(Global::Oi).unwrap_or_else(|| {
+                let os = ctx[0].globals.Os;
+                vec![os.r.lane(0), os.g.lane(0), os.b.lane(0)]
+            });
+            let mut outputs = serde_json::Map::new();
+            for (k, p) in prog.module.params.iter().enumerate() {
+                if p.output {
+                    if let Some(l) = prog.param_loc(k) {
+                        outputs.insert(p.name.clone(), json_vals(&lane_vals(&fr.read(l, 0))));
+                    }
+                }
+            }
+            anysl_rsl::back::interp::release(fr);
+            points.push(json!({"Ci": ci, "Oi": oi, "outputs": outputs}));
+        }
+    }
+    points
+}
+
+/// `rslc eval`: the points as JSON.
+pub fn eval(
+    module: Module,
+    backend: EvalBackend,
+    set: &[String],
+    global: &[String],
+    grid: &str,
+    no_lights: bool,
+) -> Result<Json, String> {
+    let (w, h) = parse_grid(grid)?;
+    let sets = parse_globals(global)?;
+    let mut m = module;
+    let values = parse_sets(&m, set)?;
+    let report = optimize(&mut m, &PassOptions::default());
+    let lights: Vec<Light> = if no_lights { Vec::new() } else { table1_lights() };
+    let points = match backend {
+        EvalBackend::Interp => {
+            let prog = Arc::new(Program::new(m).map_err(|e| e.to_string())?);
+            let mut shader = InterpShader::new(prog.clone());
+            for (name, c) in &values {
+                if let Some(i) = prog.module.params.iter().position(|p| &p.name == name) {
+                    shader.values[i] = c.clone();
+                }
+            }
+            if report.uses_derivatives {
+                eval_interp::<Dual<f32>>(&prog, &shader.values, w, h, &sets, &lights)
+            } else {
+                eval_interp::<f32>(&prog, &shader.values, w, h, &sets, &lights)
+            }
+        }
+        EvalBackend::Aot => {
+            let mut s = anysl_shaders::Surface::by_name(&m.name).ok_or_else(|| {
+                format!(
+                    "--backend aot: no compiled shader named '{}' (compiled shaders: {})",
+                    m.name,
+                    anysl_shaders::Surface::NAMES.join(", ")
+                )
+            })?;
+            for (name, c) in &values {
+                let v = match c {
+                    Const::Float(x) => ParamValue::Float(*x),
+                    Const::Triple(t) => ParamValue::Triple(*t),
+                    Const::Str(s) => ParamValue::String(s.clone()),
+                    Const::Matrix(m) => ParamValue::Matrix(*m),
+                    Const::Array(_) => return Err(format!("--set {name}: arrays cannot be set on the command line")),
+                };
+                s.set_param(name, &v).map_err(|e| format!("--set {name}: {e}"))?;
+            }
+            let mut points = Vec::new();
+            for j in 0..h {
+                for i in 0..w {
+                    let o = if s.meta().uses_derivatives {
+                        let mut ctx = PointContext::new(eval_globals::<Dual<f32>>(i, j, w, h, &sets), &lights);
+                        let o = s.shade(&mut ctx, &mut Exec::new());
+                        (o.Ci.lane(0), o.Oi.lane(0))
+                    } else {
+                        let mut ctx = PointContext::new(eval_globals::<f32>(i, j, w, h, &sets), &lights);
+                        let o = s.shade(&mut ctx, &mut Exec::new());
+                        (o.Ci.lane(0), o.Oi.lane(0))
+                    };
+                    points.push(json!({"Ci": o.0, "Oi": o.1, "outputs": {}}));
+                }
+            }
+            points
+        }
+        EvalBackend::Jit => return Err("--backend jit: this build has no JIT (build with the `jit` feature)".into()),
+    };
+    Ok(json!({ "points": points }))
+}
