@@ -11,6 +11,7 @@ pub mod back;
 pub mod builtins;
 pub mod compile;
 pub mod diag;
+pub mod eval;
 pub mod front;
 pub mod ir;
 pub mod passes;

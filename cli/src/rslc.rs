@@ -246,11 +246,11 @@ pub fn run(cmd: &RslcCommand) -> Result<u8, String> {
             Ok(0)
         }
         RslcCommand::Rust { file, sl } => {
-            let c = compile(file, sl)?;
-            let mut m = c.module;
-            optimize(&mut m, &PassOptions::default());
-            let _ = m;
-            Err("rslc rust: the Rust back end is not wired yet".into())
+            let opts = anysl_rsl::back::rust::RustOptions::default();
+            let text = anysl_rsl::back::rust::generate_file(file, &sl.compile_options(), &opts)
+                .map_err(|e| format!("{e}{} error(s) in {}", e.diags.error_count(), file.display()))?;
+            print!("{text}");
+            Ok(0)
         }
         RslcCommand::Eval { file, backend, set, global, grid, no_lights, sl } => {
             let c = compile(file, sl)?;
@@ -272,92 +272,29 @@ fn parse_grid(grid: &str) -> Result<(usize, usize), String> {
     Ok((w, h))
 }
 
-/// A global override.
-#[derive(Clone, Debug)]
-pub struct GlobalSet {
-    name: String,
-    vals: Vec<f64>,
-}
+/// A global override: name and one or three numbers.
+pub type GlobalSet = (String, Vec<f64>);
 
 fn parse_globals(globals: &[String]) -> Result<Vec<GlobalSet>, String> {
-    const NAMES: [&str; 15] = ["P", "N", "Ng", "I", "E", "s", "t", "u", "v", "du", "dv", "dPdu", "dPdv", "Cs", "Os"];
+    use anysl_rsl::eval::{is_float_global, GLOBAL_NAMES};
     globals
         .iter()
         .map(|g| {
             let (name, text) = g.split_once('=').ok_or_else(|| format!("--global {g:?}: expected NAME=VALUE"))?;
             let name = name.trim();
-            if !NAMES.contains(&name) {
-                return Err(format!("--global {name}: unknown global (choices: {})", NAMES.join(", ")));
+            if !GLOBAL_NAMES.contains(&name) {
+                return Err(format!("--global {name}: unknown global (choices: {})", GLOBAL_NAMES.join(", ")));
             }
             let vals = parse_triple(text).filter(|v| v.len() <= 3).ok_or_else(|| {
                 format!("--global {name}={text}: expected a number or a comma-separated triple")
             })?;
-            let triple = !matches!(name, "s" | "t" | "u" | "v" | "du" | "dv");
-            if triple != (vals.len() == 3) && !(triple && vals.len() == 1) {
-                return Err(format!("--global {name}={text}: {name} is a {}", if triple { "triple" } else { "float" }));
+            let float = is_float_global(name);
+            if (float && vals.len() != 1) || (!float && vals.len() != 1 && vals.len() != 3) {
+                return Err(format!("--global {name}={text}: {name} is a {}", if float { "float" } else { "triple" }));
             }
-            Ok(GlobalSet { name: name.to_string(), vals })
+            Ok((name.to_string(), vals))
         })
         .collect()
-}
-
-/// The eval harness's globals for grid point `(i, j)` of `w × h` (see tests/rsl/README.md):
-/// `u = (i + ½)/w`, `v = (j + ½)/h`, `s = u`, `t = v`, `du = 1/w`, `dv = 1/h`, `P = (u, v, 0)`,
-/// `N = Ng = (0, 0, 1)`, `E = (0, 0, 3)`, `I = P − E`, `dPdu = (1, 0, 0)`, `dPdv = (0, 1, 0)`,
-/// `Cs = Os = 1`. Screen x follows u and y follows v, one grid step per pixel, so with
-/// dual numbers `∂u/∂x = du`, `∂v/∂y = dv`. Overrides replace values (constant over the grid).
-pub fn eval_globals<F: ShadingFloat>(i: usize, j: usize, w: usize, h: usize, sets: &[GlobalSet]) -> Globals<F> {
-    let (du_, dv_) = (1.0 / w as f64, 1.0 / h as f64);
-    let (uu, vv) = ((i as f64 + 0.5) * du_, (j as f64 + 0.5) * dv_);
-    let z = F::c(0.0);
-    let u = F::c(uu).with_derivs(F::c(du_), z);
-    let v = F::c(vv).with_derivs(z, F::c(dv_));
-    let p = Vec3::new(u, v, z);
-    let e = Vec3::c(0.0, 0.0, 3.0);
-    let mut g = Globals {
-        P: p,
-        N: Vec3::c(0.0, 0.0, 1.0),
-        Ng: Vec3::c(0.0, 0.0, 1.0),
-        I: p - e,
-        E: e,
-        s: u,
-        t: v,
-        u,
-        v,
-        du: F::c(du_),
-        dv: F::c(dv_),
-        dPdu: Vec3::c(1.0, 0.0, 0.0),
-        dPdv: Vec3::c(0.0, 1.0, 0.0),
-        Cs: Color::c(1.0, 1.0, 1.0),
-        Os: Color::c(1.0, 1.0, 1.0),
-    };
-    for s in sets {
-        let t = |k: usize| F::c(s.vals[k.min(s.vals.len() - 1)]);
-        let v3 = Vec3::new(t(0), t(1), t(2));
-        let c3 = Color::new(t(0), t(1), t(2));
-        match s.name.as_str() {
-            "P" => {
-                g.P = v3;
-                g.I = v3 - g.E;
-            }
-            "N" => g.N = v3,
-            "Ng" => g.Ng = v3,
-            "I" => g.I = v3,
-            "E" => g.E = v3,
-            "dPdu" => g.dPdu = v3,
-            "dPdv" => g.dPdv = v3,
-            "Cs" => g.Cs = c3,
-            "Os" => g.Os = c3,
-            "s" => g.s = t(0),
-            "t" => g.t = t(0),
-            "u" => g.u = t(0),
-            "v" => g.v = t(0),
-            "du" => g.du = t(0),
-            "dv" => g.dv = t(0),
-            _ => {}
-        }
-    }
-    g
 }
 
 fn lane_vals<F: ShadingFloat>(v: &[F]) -> Vec<f64> {
@@ -384,7 +321,7 @@ fn eval_interp<F: ShadingFloat>(
     let mut points = Vec::new();
     for j in 0..h {
         for i in 0..w {
-            let mut ctx = [PointContext::new(eval_globals::<F>(i, j, w, h, sets), lights)];
+            let mut ctx = [PointContext::new(anysl_rsl::eval::grid_globals::<F, _>(i, j, w, h, sets), lights)];
             let fr = run_batch::<F, _>(prog, values, &mut ctx, &[F::Mask::splat(true)]);
             let read = |g: Global| prog.global_loc(g).map(|l| lane_vals(&fr.read(l, 0)));
             let ci = read(Global::Ci).unwrap_or_else(|| vec![0.0; 3]);
@@ -459,11 +396,11 @@ pub fn eval(
             for j in 0..h {
                 for i in 0..w {
                     let o = if s.meta().uses_derivatives {
-                        let mut ctx = PointContext::new(eval_globals::<Dual<f32>>(i, j, w, h, &sets), &lights);
+                        let mut ctx = PointContext::new(anysl_rsl::eval::grid_globals::<Dual<f32>, _>(i, j, w, h, &sets), &lights);
                         let o = s.shade(&mut ctx, &mut Exec::new());
                         (o.Ci.lane(0), o.Oi.lane(0))
                     } else {
-                        let mut ctx = PointContext::new(eval_globals::<f32>(i, j, w, h, &sets), &lights);
+                        let mut ctx = PointContext::new(anysl_rsl::eval::grid_globals::<f32, _>(i, j, w, h, &sets), &lights);
                         let o = s.shade(&mut ctx, &mut Exec::new());
                         (o.Ci.lane(0), o.Oi.lane(0))
                     };

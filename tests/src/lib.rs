@@ -1,3 +1,6 @@
-//! Cross-crate integration tests live in `tests/`. This library only compiles the README's
-//! code examples as doctests, so the documentation cannot drift from the API.
+//! Cross-crate integration tests live in `tests/`. This library compiles the README's code
+//! examples as doctests, so the documentation cannot drift from the API, and holds the
+//! harnesses the tests share.
 #![doc = include_str!("../../README.md")]
+
+pub mod rsl_harness;

@@ -198,3 +198,44 @@ fn generated_shaders_render_like_hand_written_in_every_renderer() {
     }
     assert!(failures.is_empty(), "generated RSL renders differently:\n{}", failures.join("\n"));
 }
+
+/// Points per second of the hand-written and the generated version of every Table-1 shader
+/// at f32 and F32x8 (run with `--ignored --nocapture`; numbers from the test profile).
+#[test]
+#[ignore = "timing, not a check"]
+fn generated_speed_vs_hand_written() {
+    use std::time::Instant;
+    fn rate<F: ShadingFloat, S: anysl_core::SurfaceShader>(s: &S, lights: &[Light], set: &PointSet) -> f64 {
+        let mut out = ShadeOut::new(set.len());
+        shade_points::<F, _, _>(s, lights, set, &mut out);
+        let mut best = f64::MAX;
+        for _ in 0..5 {
+            let t = Instant::now();
+            for _ in 0..4 {
+                shade_points::<F, _, _>(s, lights, set, &mut out);
+            }
+            best = best.min(t.elapsed().as_secs_f64() / 4.0);
+        }
+        set.len() as f64 / best
+    }
+    let set = PointSet::random(1 << 14, 11);
+    let lights = table1_lights();
+    eprintln!(
+        "{:<9} {:>12} {:>12} {:>6} {:>12} {:>12} {:>6}",
+        "shader", "hand f32", "gen f32", "ratio", "hand f32x8", "gen f32x8", "ratio"
+    );
+    for name in Surface::NAMES {
+        let (hand, gen) = pair(name);
+        let (a, b) = (rate::<f32, _>(&hand, &lights, &set), rate::<f32, _>(&gen, &lights, &set));
+        let (c, d) = (rate::<F32x8, _>(&hand, &lights, &set), rate::<F32x8, _>(&gen, &lights, &set));
+        eprintln!(
+            "{name:<9} {:>10.2}M/s {:>10.2}M/s {:>6.2} {:>10.2}M/s {:>10.2}M/s {:>6.2}",
+            a / 1e6,
+            b / 1e6,
+            b / a,
+            c / 1e6,
+            d / 1e6,
+            d / c
+        );
+    }
+}

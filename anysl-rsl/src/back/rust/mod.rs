@@ -869,6 +869,10 @@ impl<'a> Gen<'a> {
         self.line("let no: F::Mask = Mask::splat(false);");
         self.line("let mut m0 = e.mask();");
         self.line("let mut lit = no;");
+        if m.kind == ShaderKind::Light && self.f.global_slot(Global::L).is_none() {
+            // `L` as the light's output even when the body never names it.
+            self.line("let mut light_l: Vec3<F> = Vec3::zero();");
+        }
         self.slot_decls();
         let body = &m.func.body;
         let native = self.frame_native.get(&0).copied().unwrap_or(true);
@@ -1236,7 +1240,7 @@ impl<'a> Gen<'a> {
         let mut fields = Vec::new();
         if self.m.kind == ShaderKind::Light {
             fields.push(format!("Cl: {}", read(self, Global::Cl, "Color::zero()")));
-            fields.push(format!("L: {}", read(self, Global::L, "Vec3::zero()")));
+            fields.push(format!("L: {}", read(self, Global::L, "light_l")));
             let has_light = {
                 let mut any = false;
                 crate::ir::walk(&self.f.body, &mut |n| {
@@ -1352,6 +1356,12 @@ impl<'a> Gen<'a> {
                     if fixed { format!("Some({k}::Emission::{em})") } else { "None".to_string() }
                 ));
                 self.line("}");
+                if let Some(p) = self.m.params.iter().find(|p| p.name == "__category" && p.ty.base == BaseType::String)
+                {
+                    // RSL's `__category` parameter: what `illuminance("category", …)` selects on.
+                    self.line("#[inline(always)]");
+                    self.line(&format!("fn category(&self) -> &str {{ &self.{} }}", ident(&p.name)));
+                }
                 self.line("#[inline(always)]");
                 self.line(&format!(
                     "fn light<F: {k}::ShadingFloat>(&self, e: &mut {k}::Exec<F>, ps: {k}::Vec3<F>) -> {k}::LightOutput<F> {{"
@@ -1779,11 +1789,14 @@ impl<'a> Gen<'a> {
         self.line("{");
         self.ind += 1;
         self.line(&format!("let (l, in_cone) = {call};"));
-        if let Some(s) = self.f.global_slot(Global::L) {
-            let v = self.slot_var(s);
-            if self.sr[s.0 as usize] == Repr::Lane {
-                self.assign(&v, "l", Repr::Lane);
+        match self.f.global_slot(Global::L) {
+            Some(s) => {
+                let v = self.slot_var(s);
+                if self.sr[s.0 as usize] == Repr::Lane {
+                    self.assign(&v, "l", Repr::Lane);
+                }
             }
+            None => self.assign("light_l", "l", Repr::Lane),
         }
         self.line(&format!("let mut {bm} = {m} & in_cone;"));
         self.line(&format!("lit = lit | {bm};"));
