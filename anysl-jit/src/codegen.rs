@@ -591,6 +591,16 @@ impl<'c, 'm> Cg<'c, 'm> {
         let s = self.mul(self.mul(t, t), self.sub(self.fc(3.0), self.mul(self.fc(2.0), t)));
         self.sel(degenerate, self.step(e0, x), s)
     }
+    /// `fmod` as anysl-core defines it (result in `[0, b)`, 0 for `b = 0`).
+    fn fmod(&self, a: S<'c>, b: S<'c>) -> S<'c> {
+        let z = self.fc(0.0);
+        let bz = self.cmp(FloatPredicate::OEQ, b, z);
+        let bb = self.sel(bz, self.fc(1.0), b);
+        let r = self.sub(a, self.mul(bb, self.floor(self.div(a, bb))));
+        let fold = self.mand(self.cmp(FloatPredicate::OGE, r, bb), self.cmp(FloatPredicate::OGT, bb, z));
+        let r = self.sel(fold, self.sub(r, bb), r);
+        self.sel(bz, z, r)
+    }
     fn mix(&self, a: S<'c>, b: S<'c>, t: S<'c>) -> S<'c> {
         self.add(a, self.mul(t, self.sub(b, a)))
     }
@@ -2228,9 +2238,29 @@ impl<'c> Cg<'c, '_> {
             "floor" => Val::Num(nums(self, 0)?.into_iter().map(|s| self.floor(s)).collect()),
             "ceil" => Val::Num(nums(self, 0)?.into_iter().map(|s| self.ceil(s)).collect()),
             "sqrt" => Val::Num(nums(self, 0)?.into_iter().map(|s| self.sqrt(s)).collect()),
-            "sign" => un_rt(self, rt::un::SIGN)?,
-            "round" => un_rt(self, rt::un::ROUND)?,
-            "inversesqrt" => un_rt(self, rt::un::INVSQRT)?,
+            "sign" => Val::Num(
+                nums(self, 0)?
+                    .into_iter()
+                    .map(|x| {
+                        let r = if x.r == Repr::D { Repr::V } else { x.r };
+                        let z = self.to(self.fc(0.0), r);
+                        let gt = self.cmp(FloatPredicate::OGT, x, self.fc(0.0));
+                        let lt = self.cmp(FloatPredicate::OLT, x, self.fc(0.0));
+                        let inner = self.sel(lt, self.to(self.fc(-1.0), r), z);
+                        let v = self.sel(gt, self.to(self.fc(1.0), r), inner);
+                        self.to(v, x.r)
+                    })
+                    .collect(),
+            ),
+            "round" => Val::Num(
+                nums(self, 0)?
+                    .into_iter()
+                    .map(|x| self.constant_part(x.r, self.unary_intr("llvm.round", x.v)))
+                    .collect(),
+            ),
+            "inversesqrt" => {
+                Val::Num(nums(self, 0)?.into_iter().map(|x| self.div(self.fc(1.0), self.sqrt(x))).collect())
+            }
             "exp" => un_rt(self, rt::un::EXP)?,
             "log" if n == 1 => un_rt(self, rt::un::LOG)?,
             "log" if n == 2 => bin_rt(self, rt::bin::LOG_BASE, nums(self, 0)?.len())?,
@@ -2252,7 +2282,11 @@ impl<'c> Cg<'c, '_> {
                 Val::Num(vec![self.mul(x, x)])
             }
             "pow" if n == 2 => bin_rt(self, rt::bin::POW, nums(self, 0)?.len())?,
-            "mod" if n == 2 => bin_rt(self, rt::bin::MOD, nums(self, 0)?.len())?,
+            "mod" if n == 2 => {
+                let all = vec![nums(self, 0)?, nums(self, 1)?];
+                let w = all[0].len();
+                Val::Num(self.cwise(&all, w, |cg, x| cg.fmod(x[0], x[1])))
+            }
             "min" | "max" if n >= 2 => {
                 let all: Vec<Vec<S<'c>>> = (0..n).map(|i| nums(self, i)).collect::<R<_>>()?;
                 let max = name == "max";
@@ -2442,7 +2476,13 @@ impl<'c> Cg<'c, '_> {
             }
             "filterstep" => {
                 let nnum = (0..n).take_while(|&i| aty(i) != BaseType::String).count();
-                if nnum >= 3 {
+                let any_dual =
+                    (0..nnum.min(3)).any(|i| matches!(&args[i], Val::Num(c) if c.iter().any(|s| s.r == Repr::D)));
+                if nnum == 2 && !any_dual {
+                    // No derivatives: the filter width is 0 and filterstep is step.
+                    let (e, x) = (nums(self, 0)?[0], nums(self, 1)?[0]);
+                    Val::Num(vec![self.step(e, x)])
+                } else if nnum >= 3 {
                     Val::Num(self.rt_call(RtKind::Bin, rt::bin::FILTERSTEP3, &flat_args(self, 0..3)?, 1, true))
                 } else {
                     Val::Num(self.rt_call(RtKind::Bin, rt::bin::FILTERSTEP, &flat_args(self, 0..2)?, 1, true))

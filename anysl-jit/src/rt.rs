@@ -423,6 +423,23 @@ pub unsafe extern "C" fn rt_spline<F: JitFloat>(
     }
 }
 
+/// What the host shims receive as `ctx`: the renderer's context plus a memo of the last
+/// `specular` light loop, which also summed the diffuse term (the fused loop of
+/// [`diffuse_specular`], as the compiled Rust shaders use): a following `diffuse` of the same
+/// normal under the same mask reuses it instead of visiting the lights again.
+pub struct HostCtx<'a, F: ShadingFloat, C> {
+    /// The renderer's context.
+    pub ctx: &'a mut C,
+    /// `(N, mask, diffuse)` of the last fused loop.
+    pub lit: Option<(Vec3<F>, F::Mask, Color<F>)>,
+}
+
+fn same<F: ShadingFloat>(a: Vec3<F>, b: Vec3<F>, ma: F::Mask, mb: F::Mask) -> bool {
+    let eq = a.x.eq(b.x) & a.y.eq(b.y) & a.z.eq(b.z);
+    let dm = (ma & !mb) | (mb & !ma);
+    dm.none() && (eq | !ma).all()
+}
+
 /// The callbacks that need the renderer: a table per float type and context type, indexed by
 /// [`crate::abi::host`].
 pub struct HostTable<F, C, G>(PhantomData<(F, C, G)>);
@@ -460,7 +477,7 @@ unsafe extern "C" fn host_illuminance<F: ShadingFloat, C: ShadingContext<F>, G: 
     body: BodyFn,
     env: *mut u8,
 ) {
-    let ctx = &mut *ctx.cast::<C>();
+    let ctx = &mut *(*ctx.cast::<HostCtx<F, C>>()).ctx;
     let m = cast::<G::Mask, F::Mask>(G::read_mask(mask));
     let mut i = HIn::<F, G>::new(inp);
     let p = i.v3();
@@ -491,7 +508,7 @@ unsafe extern "C" fn host_ambient<F: ShadingFloat, C: ShadingContext<F>, G: JitF
     out: *mut f32,
     _: u32,
 ) {
-    let ctx = &mut *ctx.cast::<C>();
+    let ctx = &mut *(*ctx.cast::<HostCtx<F, C>>()).ctx;
     let e = Exec::with_mask(cast::<G::Mask, F::Mask>(G::read_mask(mask)));
     HOut::<F, G>::new(out).c3(ctx.ambient(&e));
 }
@@ -503,10 +520,15 @@ unsafe extern "C" fn host_diffuse<F: ShadingFloat, C: ShadingContext<F>, G: JitF
     out: *mut f32,
     _: u32,
 ) {
-    let ctx = &mut *ctx.cast::<C>();
-    let mut e = Exec::with_mask(cast::<G::Mask, F::Mask>(G::read_mask(mask)));
+    let hc = &mut *ctx.cast::<HostCtx<F, C>>();
+    let m = cast::<G::Mask, F::Mask>(G::read_mask(mask));
+    let mut e = Exec::with_mask(m);
     let n = HIn::<F, G>::new(inp).v3();
-    HOut::<F, G>::new(out).c3(diffuse(ctx, &mut e, n));
+    let d = match hc.lit.take() {
+        Some((n0, m0, d)) if same(n, n0, m, m0) => d,
+        _ => diffuse(hc.ctx, &mut e, n),
+    };
+    HOut::<F, G>::new(out).c3(d);
 }
 
 unsafe extern "C" fn host_specular<F: ShadingFloat, C: ShadingContext<F>, G: JitFloat>(
@@ -516,11 +538,14 @@ unsafe extern "C" fn host_specular<F: ShadingFloat, C: ShadingContext<F>, G: Jit
     out: *mut f32,
     _: u32,
 ) {
-    let ctx = &mut *ctx.cast::<C>();
-    let mut e = Exec::with_mask(cast::<G::Mask, F::Mask>(G::read_mask(mask)));
+    let hc = &mut *ctx.cast::<HostCtx<F, C>>();
+    let m = cast::<G::Mask, F::Mask>(G::read_mask(mask));
+    let mut e = Exec::with_mask(m);
     let mut i = HIn::<F, G>::new(inp);
     let (n, v, r) = (i.v3(), i.v3(), i.f());
-    HOut::<F, G>::new(out).c3(specular(ctx, &mut e, n, v, r));
+    let (d, sp) = diffuse_specular(hc.ctx, &mut e, n, v, r);
+    hc.lit = Some((n, m, d));
+    HOut::<F, G>::new(out).c3(sp);
 }
 
 unsafe extern "C" fn host_phong<F: ShadingFloat, C: ShadingContext<F>, G: JitFloat>(
@@ -530,7 +555,7 @@ unsafe extern "C" fn host_phong<F: ShadingFloat, C: ShadingContext<F>, G: JitFlo
     out: *mut f32,
     _: u32,
 ) {
-    let ctx = &mut *ctx.cast::<C>();
+    let ctx = &mut *(*ctx.cast::<HostCtx<F, C>>()).ctx;
     let mut e = Exec::with_mask(cast::<G::Mask, F::Mask>(G::read_mask(mask)));
     let mut i = HIn::<F, G>::new(inp);
     let (n, v, r) = (i.v3(), i.v3(), i.f());
@@ -544,7 +569,7 @@ unsafe extern "C" fn host_trace<F: ShadingFloat, C: ShadingContext<F>, G: JitFlo
     out: *mut f32,
     _: u32,
 ) {
-    let ctx = &mut *ctx.cast::<C>();
+    let ctx = &mut *(*ctx.cast::<HostCtx<F, C>>()).ctx;
     let e = Exec::with_mask(cast::<G::Mask, F::Mask>(G::read_mask(mask)));
     let mut i = HIn::<F, G>::new(inp);
     let (p, d) = (i.v3(), i.v3());
@@ -558,7 +583,7 @@ unsafe extern "C" fn host_du<F: ShadingFloat, C: ShadingContext<F>, G: JitFloat>
     out: *mut f32,
     aux: u32,
 ) {
-    let g = *(*ctx.cast::<C>()).globals();
+    let g = *(*ctx.cast::<HostCtx<F, C>>()).ctx.globals();
     let mut i = HIn::<F, G>::new(inp);
     let mut o = HOut::<F, G>::new(out);
     for _ in 0..aux {
@@ -573,7 +598,7 @@ unsafe extern "C" fn host_dv<F: ShadingFloat, C: ShadingContext<F>, G: JitFloat>
     out: *mut f32,
     aux: u32,
 ) {
-    let g = *(*ctx.cast::<C>()).globals();
+    let g = *(*ctx.cast::<HostCtx<F, C>>()).ctx.globals();
     let mut i = HIn::<F, G>::new(inp);
     let mut o = HOut::<F, G>::new(out);
     for _ in 0..aux {
@@ -588,7 +613,7 @@ unsafe extern "C" fn host_deriv<F: ShadingFloat, C: ShadingContext<F>, G: JitFlo
     out: *mut f32,
     aux: u32,
 ) {
-    let g = *(*ctx.cast::<C>()).globals();
+    let g = *(*ctx.cast::<HostCtx<F, C>>()).ctx.globals();
     let mut i = HIn::<F, G>::new(inp);
     let mut num = [F::c(0.0); 3];
     for n in num.iter_mut().take(aux as usize) {
@@ -608,7 +633,7 @@ unsafe extern "C" fn host_calcnormal<F: ShadingFloat, C: ShadingContext<F>, G: J
     out: *mut f32,
     _: u32,
 ) {
-    let g = *(*ctx.cast::<C>()).globals();
+    let g = *(*ctx.cast::<HostCtx<F, C>>()).ctx.globals();
     let p = HIn::<F, G>::new(inp).v3();
     HOut::<F, G>::new(out).v3(calculatenormal(&g, p));
 }
@@ -620,7 +645,7 @@ unsafe extern "C" fn host_random<F: ShadingFloat, C: ShadingContext<F>, G: JitFl
     out: *mut f32,
     aux: u32,
 ) {
-    let p = (*ctx.cast::<C>()).globals().P;
+    let p = (*ctx.cast::<HostCtx<F, C>>()).ctx.globals().P;
     let mut o = HOut::<F, G>::new(out);
     for c in 0..aux {
         o.f(cellnoise(NoiseDomain::D4(p * F::c(1.0e4), F::c(f64::from(c) + 0.5))));

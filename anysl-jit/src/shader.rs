@@ -2,7 +2,7 @@
 //! boundary as every other shader.
 
 use crate::abi::{JitFloat, GLOBAL_ORDER, GLOBAL_VALUES, OUTPUT_VALUES};
-use crate::rt::{cast, HostTable};
+use crate::rt::{cast, HostCtx, HostTable};
 use crate::{compile, CompiledShader, JitError, JitOptions, Variant};
 use anysl_ad::Dual;
 use anysl_core::prelude::*;
@@ -46,6 +46,8 @@ pub struct JitShader {
     pub opts: JitOptions,
     variants: [Slot; 6],
     interp: InterpShader,
+    /// The globals the shader reads (only these are copied in).
+    used_globals: Vec<(Global, usize)>,
 }
 
 impl Clone for JitShader {
@@ -56,6 +58,7 @@ impl Clone for JitShader {
             opts: self.opts.clone(),
             variants: Default::default(),
             interp: self.interp.clone(),
+            used_globals: self.used_globals.clone(),
         }
     }
 }
@@ -76,7 +79,13 @@ impl JitShader {
         let mut interp_module = module.clone();
         anysl_rsl::passes::optimize(&mut interp_module, &anysl_rsl::passes::PassOptions::default());
         let program = Program::new(interp_module).map_err(|e| JitError(e.to_string()))?;
+        let used_globals = GLOBAL_ORDER
+            .iter()
+            .copied()
+            .filter(|(g, _)| matches!(g, Global::P | Global::Ng | Global::Os) || module.func.global_slot(*g).is_some())
+            .collect();
         Ok(Self {
+            used_globals,
             module: Arc::new(module),
             values,
             opts,
@@ -124,46 +133,52 @@ impl JitShader {
         ctx: &mut C,
         e: &Exec<F>,
     ) -> SurfaceOutput<F> {
-        let mut gbuf = [0.0f32; GLOBAL_VALUES * 48];
-        let mut obuf = [0.0f32; OUTPUT_VALUES * 48];
+        // Uninitialized: only the globals the shader reads are written and read; every output
+        // is written by the compiled code (zeroing 9 KB per call would cost more than shading).
+        let mut gbuf_m = std::mem::MaybeUninit::<[f32; GLOBAL_VALUES * 48]>::uninit();
+        let mut obuf_m = std::mem::MaybeUninit::<[f32; OUTPUT_VALUES * 48]>::uninit();
+        let gbuf: *mut f32 = gbuf_m.as_mut_ptr().cast();
+        let obuf: *mut f32 = obuf_m.as_mut_ptr().cast();
         let mut mbuf = [0u32; 16];
         let g = *ctx.globals();
         let st = G::STRIDE;
-        let put = |buf: &mut [f32], k: usize, x: F| unsafe { cast::<F, G>(x).write(buf.as_mut_ptr().add(k * st)) };
-        for (gl, off) in GLOBAL_ORDER {
+        // SAFETY: `k < GLOBAL_VALUES` and the buffer holds `GLOBAL_VALUES * 48 >= GLOBAL_VALUES * st` floats.
+        let put = |buf: *mut f32, k: usize, x: F| unsafe { cast::<F, G>(x).write(buf.add(k * st)) };
+        for &(gl, off) in &self.used_globals {
             match gl {
-                Global::P => put3(&mut gbuf, off, g.P, put),
-                Global::N => put3(&mut gbuf, off, g.N, put),
-                Global::Ng => put3(&mut gbuf, off, g.Ng, put),
-                Global::I => put3(&mut gbuf, off, g.I, put),
-                Global::E => put3(&mut gbuf, off, g.E, put),
-                Global::DPdu => put3(&mut gbuf, off, g.dPdu, put),
-                Global::DPdv => put3(&mut gbuf, off, g.dPdv, put),
-                Global::Cs => put3(&mut gbuf, off, Vec3::new(g.Cs.r, g.Cs.g, g.Cs.b), put),
-                Global::Os => put3(&mut gbuf, off, Vec3::new(g.Os.r, g.Os.g, g.Os.b), put),
-                Global::S => put(&mut gbuf, off, g.s),
-                Global::T => put(&mut gbuf, off, g.t),
-                Global::U => put(&mut gbuf, off, g.u),
-                Global::V => put(&mut gbuf, off, g.v),
-                Global::Du => put(&mut gbuf, off, g.du),
-                Global::Dv => put(&mut gbuf, off, g.dv),
+                Global::P => put3(gbuf, off, g.P, put),
+                Global::N => put3(gbuf, off, g.N, put),
+                Global::Ng => put3(gbuf, off, g.Ng, put),
+                Global::I => put3(gbuf, off, g.I, put),
+                Global::E => put3(gbuf, off, g.E, put),
+                Global::DPdu => put3(gbuf, off, g.dPdu, put),
+                Global::DPdv => put3(gbuf, off, g.dPdv, put),
+                Global::Cs => put3(gbuf, off, Vec3::new(g.Cs.r, g.Cs.g, g.Cs.b), put),
+                Global::Os => put3(gbuf, off, Vec3::new(g.Os.r, g.Os.g, g.Os.b), put),
+                Global::S => put(gbuf, off, g.s),
+                Global::T => put(gbuf, off, g.t),
+                Global::U => put(gbuf, off, g.u),
+                Global::V => put(gbuf, off, g.v),
+                Global::Du => put(gbuf, off, g.du),
+                Global::Dv => put(gbuf, off, g.dv),
                 _ => {}
             }
         }
         unsafe { G::write_mask(cast::<F::Mask, G::Mask>(e.mask()), mbuf.as_mut_ptr()) };
         let host = HostTable::<F, C, G>::table();
+        let mut hc = HostCtx { ctx, lit: None };
         // SAFETY: the buffers have the layout the compiled code expects; `ctx` is a `C`, which
         // is what the host table's shims take.
         unsafe {
-            (cs.f)(gbuf.as_ptr(), obuf.as_mut_ptr(), mbuf.as_ptr(), (ctx as *mut C).cast(), host.as_ptr());
+            (cs.f)(gbuf, obuf, mbuf.as_ptr(), (&mut hc as *mut HostCtx<F, C>).cast(), host.as_ptr());
         }
-        let get = |k: usize| -> F { unsafe { cast::<G, F>(G::read(obuf.as_ptr().add(k * st))) } };
+        let get = |k: usize| -> F { unsafe { cast::<G, F>(G::read(obuf.add(k * st))) } };
         SurfaceOutput { Ci: Color::new(get(0), get(1), get(2)), Oi: Color::new(get(3), get(4), get(5)) }
     }
 }
 
 #[inline(always)]
-fn put3<F: Copy>(buf: &mut [f32], off: usize, v: Vec3<F>, put: impl Fn(&mut [f32], usize, F)) {
+fn put3<F: Copy>(buf: *mut f32, off: usize, v: Vec3<F>, put: impl Fn(*mut f32, usize, F)) {
     put(buf, off, v.x);
     put(buf, off + 1, v.y);
     put(buf, off + 2, v.z);
