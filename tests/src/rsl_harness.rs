@@ -11,7 +11,7 @@
 //! assert!(check(&d, &[("Ci", vec![0.6, 0.5, 0.5])]).is_err());
 //! ```
 
-use anysl_core::{Color, Globals, ParamValue, ShadingFloat, Vec3};
+use anysl_core::{Globals, ParamValue, ShadingFloat};
 
 /// Default absolute tolerance of an `// expect:` line.
 pub const DEFAULT_TOL: f64 = 1e-5;
@@ -95,57 +95,7 @@ pub fn parse_directives(text: &str) -> Directives {
 /// dual numbers, screen x follows u and y follows v: `∂u/∂x = du`, `∂v/∂y = dv`.
 #[must_use]
 pub fn grid_globals<F: ShadingFloat>(d: &Directives, i: usize, j: usize, w: usize, h: usize) -> Globals<F> {
-    let (du_, dv_) = (1.0 / w as f64, 1.0 / h as f64);
-    let (uu, vv) = ((i as f64 + 0.5) * du_, (j as f64 + 0.5) * dv_);
-    let z = F::c(0.0);
-    let u = F::c(uu).with_derivs(F::c(du_), z);
-    let v = F::c(vv).with_derivs(z, F::c(dv_));
-    let p = Vec3::new(u, v, z);
-    let e = Vec3::c(0.0, 0.0, 3.0);
-    let mut g = Globals {
-        P: p,
-        N: Vec3::c(0.0, 0.0, 1.0),
-        Ng: Vec3::c(0.0, 0.0, 1.0),
-        I: p - e,
-        E: e,
-        s: u,
-        t: v,
-        u,
-        v,
-        du: F::c(du_),
-        dv: F::c(dv_),
-        dPdu: Vec3::c(1.0, 0.0, 0.0),
-        dPdv: Vec3::c(0.0, 1.0, 0.0),
-        Cs: Color::c(1.0, 1.0, 1.0),
-        Os: Color::c(1.0, 1.0, 1.0),
-    };
-    for (name, vals) in &d.globals {
-        let t = |k: usize| F::c(vals[k.min(vals.len() - 1)]);
-        let v3 = Vec3::new(t(0), t(1), t(2));
-        let c3 = Color::new(t(0), t(1), t(2));
-        match name.as_str() {
-            "P" => {
-                g.P = v3;
-                g.I = v3 - g.E;
-            }
-            "N" => g.N = v3,
-            "Ng" => g.Ng = v3,
-            "I" => g.I = v3,
-            "E" => g.E = v3,
-            "dPdu" => g.dPdu = v3,
-            "dPdv" => g.dPdv = v3,
-            "Cs" => g.Cs = c3,
-            "Os" => g.Os = c3,
-            "s" => g.s = t(0),
-            "t" => g.t = t(0),
-            "u" => g.u = t(0),
-            "v" => g.v = t(0),
-            "du" => g.du = t(0),
-            "dv" => g.dv = t(0),
-            _ => {}
-        }
-    }
-    g
+    anysl_rsl::eval::grid_globals(i, j, w, h, &d.globals)
 }
 
 /// The globals of the first point of a `w × h` grid (the whole grid for the usual 1×1), as

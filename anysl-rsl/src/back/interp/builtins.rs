@@ -136,6 +136,8 @@ pub enum Bi {
     Match,
     /// Message passing and queries: reports "not found" (returns 0, leaves the output).
     Query,
+    /// A constant result of this width (1 or 3): the answer of a scene query outside a scene.
+    Fill(u32, u32),
     ShaderName,
     Depth,
     Sqr,
@@ -281,6 +283,11 @@ pub fn resolve(
         "match" => Bi::Match,
         "surface" | "lightsource" | "displacement" | "atmosphere" | "incident" | "opposite" | "attribute"
         | "option" | "rendererinfo" | "textureinfo" => Bi::Query,
+        "rayinfo" => Bi::Query,
+        // Outside a scene: camera rays, nothing occludes, no indirect or caustic light.
+        "raylevel" | "isshadowray" | "isindirectray" | "occlusion" => Bi::Fill(0, 1),
+        "indirectdiffuse" | "caustic" => Bi::Fill(0, 3),
+        "transmission" => Bi::Fill(1, 3),
         "shadername" => Bi::ShaderName,
         "depth" => Bi::Depth,
         _ => {
@@ -397,7 +404,10 @@ pub fn call<F: ShadingFloat, C: ShadingContext<F>>(
         Bi::Clamp(w, _) => {
             for c in 0..w {
                 let g = |i: usize| fr.get(if aw(i) == 1 { a(i) } else { a(i) + c }, k);
-                let v = clamp(g(0), g(1), g(2));
+                // `min(x, hi)` first, then `max(·, lo)`: the same as `clamp` when lo ≤ hi, and lo
+                // when the bounds cross — so loops that step by `clamp (ss, minstep, end - d)`
+                // (ARMan's smoke.sl, cellclouds.sl) still advance at the end, as in PRMan.
+                let v = g(0).min(g(2)).max(g(1));
                 fr.set(d + c, k, v);
             }
         }
@@ -701,10 +711,31 @@ pub fn call<F: ShadingFloat, C: ShadingContext<F>>(
             let g = ctx.map(|c| *c.globals());
             let cs: Vec<Loc> = args[1..1 + coords as usize].to_vec();
             let v = texture::lookup(fr, &name, kind, &cs, g.as_ref(), k);
+            // `"name"[n]` (lowered to a `"firstchannel", n` option) starts at channel n; the
+            // maps are RGB, so channels past blue (alpha) read the "fill" value, 1 by default
+            // for a map that exists (opaque) and 0 for a missing one.
+            let mut first = 0usize;
+            let mut fill = if texture::exists(&name) { F::c(1.0) } else { F::c(0.0) };
+            let opts = args.get(1 + coords as usize..).unwrap_or(&[]);
+            for pair in opts.chunks(2) {
+                if let [n, val] = pair {
+                    match space_str(fr, *n) {
+                        "firstchannel" => first = fr.get(val.off(), k).lane(0).max(0.0) as usize,
+                        "fill" => fill = fr.get(val.off(), k),
+                        _ => {}
+                    }
+                }
+            }
+            let chan = |c: usize| match c {
+                0 => v.r,
+                1 => v.g,
+                2 => v.b,
+                _ => fill,
+            };
             if out == 1 {
-                fr.set(d, k, v.r);
+                fr.set(d, k, chan(first));
             } else {
-                setc!(v);
+                fr.set3(d, k, [chan(first), chan(first + 1), chan(first + 2)]);
             }
         }
         Bi::Concat => {
@@ -733,6 +764,13 @@ pub fn call<F: ShadingFloat, C: ShadingContext<F>>(
         Bi::Query => {
             fr.set(d, k, F::c(0.0));
         }
+        Bi::Fill(x, width) => {
+            if width == 1 {
+                fr.set(d, k, F::c(f64::from(x)));
+            } else {
+                fr.set3(d, k, [F::c(f64::from(x)); 3]);
+            }
+        }
         Bi::ShaderName => {}
         Bi::Depth => {
             let z = ctx.map_or(F::c(0.0), |c| c.globals().P.z);
@@ -741,121 +779,22 @@ pub fn call<F: ShadingFloat, C: ShadingContext<F>>(
     }
 }
 
-/// `format`/`printf`: C-style conversions `%f %e %g %d %i %s %c %p %m %%` with flags, width and
-/// precision (numbers print lane 0; triples as `x y z`, matrices as 16 numbers).
+/// `format`/`printf` through the one formatter generated Rust uses too.
 fn format_rsl<F: ShadingFloat>(fr: &Frame<F>, args: &[Loc], k: usize) -> String {
+    use crate::back::rust::rt::FmtArg;
     let fmt = space_str(fr, args[0]).to_string();
-    let mut out = String::new();
-    let mut next = 1usize;
-    let mut chars = fmt.chars().peekable();
-    while let Some(c) = chars.next() {
-        if c != '%' {
-            out.push(c);
-            continue;
-        }
-        let mut left = false;
-        let mut plus = false;
-        let mut zero = false;
-        while let Some(&p) = chars.peek() {
-            match p {
-                '-' => left = true,
-                '+' => plus = true,
-                '0' => zero = true,
-                ' ' | '#' => {}
-                _ => break,
-            }
-            chars.next();
-        }
-        let mut width = String::new();
-        while let Some(&p) = chars.peek().filter(|p| p.is_ascii_digit()) {
-            width.push(p);
-            chars.next();
-        }
-        let mut prec: Option<usize> = None;
-        if chars.peek() == Some(&'.') {
-            chars.next();
-            let mut p = String::new();
-            while let Some(&d) = chars.peek().filter(|d| d.is_ascii_digit()) {
-                p.push(d);
-                chars.next();
-            }
-            prec = Some(p.parse().unwrap_or(0));
-        }
-        let Some(conv) = chars.next() else {
-            out.push('%');
-            break;
-        };
-        if conv == '%' {
-            out.push('%');
-            continue;
-        }
-        let num = |x: f64| -> String {
-            let s = match conv {
-                'd' | 'i' => format!("{}", x.trunc() as i64),
-                'e' | 'E' => format!("{:.*e}", prec.unwrap_or(6), x),
-                'g' | 'G' => {
-                    let p = prec.unwrap_or(6).max(1);
-                    let e = if x == 0.0 { 0 } else { x.abs().log10().floor() as i32 };
-                    if e < -4 || e >= p as i32 {
-                        format!("{:.*e}", p - 1, x)
-                    } else {
-                        let s = format!("{:.*}", (p as i32 - 1 - e).max(0) as usize, x);
-                        if s.contains('.') { s.trim_end_matches('0').trim_end_matches('.').to_string() } else { s }
-                    }
-                }
-                _ => format!("{:.*}", prec.unwrap_or(6), x),
-            };
-            if plus && x >= 0.0 { format!("+{s}") } else { s }
-        };
-        let text = match args.get(next) {
-            Some(Loc::Str(i, _)) => fr.s[*i as usize].clone(),
-            Some(Loc::Num { off, width }) => {
-                let parts: Vec<String> = (0..*width).map(|c| num(fr.get(off + c, k).lane(0))).collect();
-                parts.join(" ")
-            }
-            _ => String::new(),
-        };
-        next += 1;
-        let w: usize = width.parse().unwrap_or(0);
-        let pad = w.saturating_sub(text.chars().count());
-        if left {
-            out.push_str(&text);
-            out.push_str(&" ".repeat(pad));
-        } else {
-            out.push_str(&(if zero { "0" } else { " " }).repeat(pad));
-            out.push_str(&text);
-        }
-    }
-    out
+    let rest: Vec<FmtArg> = args[1..]
+        .iter()
+        .map(|l| match *l {
+            Loc::Str(i, _) => FmtArg::Str(fr.s[i as usize].clone()),
+            Loc::Num { off, width } => FmtArg::Num((0..width).map(|c| fr.get(off + c, k).lane(0)).collect()),
+            Loc::Mask(m) => FmtArg::Num(vec![if fr.mask(m, k).lane(0) { 1.0 } else { 0.0 }]),
+            Loc::None => FmtArg::Str(String::new()),
+        })
+        .collect();
+    crate::back::rust::rt::format_rsl(&fmt, &rest)
 }
 
-/// `match(pattern, subject)`: a substring search with `.` (any char), `^`/`$` anchors and
-/// `*` (repeat the previous char) — the subset of regular expressions shaders use.
 fn simple_match(pat: &str, subj: &str) -> bool {
-    fn here(p: &[char], s: &[char]) -> bool {
-        match p {
-            [] => true,
-            ['$'] => s.is_empty(),
-            [c, '*', rest @ ..] => {
-                let mut i = 0;
-                loop {
-                    if here(rest, &s[i..]) {
-                        return true;
-                    }
-                    if i < s.len() && (*c == '.' || s[i] == *c) {
-                        i += 1;
-                    } else {
-                        return false;
-                    }
-                }
-            }
-            [c, rest @ ..] => !s.is_empty() && (*c == '.' || s[0] == *c) && here(rest, &s[1..]),
-        }
-    }
-    let p: Vec<char> = pat.chars().collect();
-    let s: Vec<char> = subj.chars().collect();
-    if let Some(rest) = p.strip_prefix(&['^']) {
-        return here(rest, &s);
-    }
-    (0..=s.len()).any(|i| here(&p, &s[i..]))
+    crate::back::rust::rt::simple_match(pat, subj)
 }

@@ -20,6 +20,10 @@ pub struct Frame<F: ShadingFloat> {
     loops: Vec<(Vec<F::Mask>, Vec<F::Mask>)>,
     rets: Vec<Vec<F::Mask>>,
     widening: bool,
+    /// `L` as set by `illuminate`/`solar` (for light shaders whose body never names `L`).
+    light_l: Vec3<F>,
+    /// The surface point a light shader is evaluated for (`Ps`).
+    light_ps: Vec3<F>,
 }
 
 impl<F: ShadingFloat> Frame<F> {
@@ -105,6 +109,8 @@ fn take_frame<F: ShadingFloat>(p: &Program, n: usize) -> Frame<F> {
             loops: Vec::new(),
             rets: Vec::new(),
             widening: false,
+            light_l: Vec3::zero(),
+            light_ps: Vec3::zero(),
         },
         |b| *b,
     );
@@ -118,6 +124,8 @@ fn take_frame<F: ShadingFloat>(p: &Program, n: usize) -> Frame<F> {
     fr.loops.clear();
     fr.rets.clear();
     fr.widening = false;
+    fr.light_l = Vec3::zero();
+    fr.light_ps = Vec3::zero();
     for &(r, x) in &p.consts {
         let v = F::c(x);
         for k in 0..n {
@@ -399,7 +407,7 @@ fn light_body<F: ShadingFloat, C: ShadingContext<F>>(
     let mut bm = Vec::with_capacity(mask.len());
     for k in range.clone() {
         let m = mask[k - range.start];
-        let ps = ps_slot.map_or_else(Vec3::zero, |r| fr.vec3(r, k));
+        let ps = ps_slot.map_or(fr.light_ps, |r| fr.vec3(r, k));
         let (l, lit) = match from {
             Some(p) => illuminate(ps, fr.vec3(p, k), cone.map(|(a, b)| (fr.vec3(a, k), fr.get(b, k)))),
             None => {
@@ -410,6 +418,7 @@ fn light_body<F: ShadingFloat, C: ShadingContext<F>>(
         if let Some(r) = l_slot {
             fr.write(r, k, m, &[l.x, l.y, l.z]);
         }
+        fr.light_l = Vec3::select(m, l, fr.light_l);
         bm.push(m & lit);
     }
     if bm.iter().any(|m| m.any()) {
@@ -952,6 +961,7 @@ impl LightShader for InterpLight {
                 write_const(&mut fr, *loc, c);
             }
         }
+        fr.light_ps = ps;
         if let Some(Loc::Num { off, .. }) = p.global_loc(Global::Ps) {
             fr.set3(off, 0, [ps.x, ps.y, ps.z]);
         }
@@ -969,7 +979,7 @@ impl LightShader for InterpLight {
         };
         let l = match p.global_loc(Global::L) {
             Some(Loc::Num { off, .. }) => fr.vec3(off, 0),
-            _ => Vec3::zero(),
+            _ => fr.light_l,
         };
         release(fr);
         let emission = self.emission().unwrap_or(Emission::Local);
