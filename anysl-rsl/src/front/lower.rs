@@ -174,6 +174,9 @@ struct Lowerer<'a, 'd> {
     called: HashSet<Span>,
     /// Functions whose `MISSING_RETURN` check ran.
     ret_checked: HashSet<Span>,
+    /// Lowering the value stored into a uniform variable: `random()` is then uniform (one
+    /// number for the whole grid, as in PRMan).
+    uniform_target: bool,
 }
 
 fn kind_of(k: ShaderType) -> ShaderKind {
@@ -384,6 +387,7 @@ impl<'a, 'd> Lowerer<'a, 'd> {
             inlining: Vec::new(),
             called: HashSet::new(),
             ret_checked: HashSet::new(),
+            uniform_target: false,
         }
     }
 
@@ -497,6 +501,10 @@ impl<'a, 'd> Lowerer<'a, 'd> {
         }
         if let Some(g) = Global::from_name(name) {
             return Some(Found::Global(g));
+        }
+        // Aqsis' light shaders call the surface normal at `Ps` `Ns`.
+        if name == "Ns" && self.kind == ShaderType::Light {
+            return Some(Found::Global(Global::N));
         }
         if name == "PI" {
             return Some(Found::Pi);
@@ -846,7 +854,7 @@ impl<'a, 'd> Lowerer<'a, 'd> {
                         self.typed(b, BaseType::Float, "the illuminate angle"),
                     )
                 });
-                let body = self.light_body(body);
+                let body = self.light_body(body, cone.is_none());
                 let Some(pos) = pos else { return };
                 let cone = match cone {
                     Some((Some(a), Some(b))) => Some((a.v, b.v)),
@@ -863,7 +871,7 @@ impl<'a, 'd> Lowerer<'a, 'd> {
                         self.typed(b, BaseType::Float, "the solar angle"),
                     )
                 });
-                let body = self.light_body(body);
+                let body = self.light_body(body, true);
                 let cone = match cone {
                     Some((Some(a), Some(b))) => Some((a.v, b.v)),
                     Some(_) => return,
@@ -900,11 +908,18 @@ impl<'a, 'd> Lowerer<'a, 'd> {
         }
     }
 
-    fn light_body(&mut self, body: &'a Stmt) -> ir::Block {
+    /// The body of `illuminate` or `solar`. With a cone (`illuminate (P, axis, angle)`) only
+    /// the points inside it run the body: varying control flow. Without one — `illuminate (P)`,
+    /// and `solar`, whose direction does not depend on the point — every point runs it, so
+    /// uniform variables may be assigned there (PRMan's own rectanglelight.sl runs uniform
+    /// sample loops inside `illuminate (Ps + Ns)`, Liquid's lights query `textureinfo` inside
+    /// `solar`).
+    fn light_body(&mut self, body: &'a Stmt, all_points: bool) -> ir::Block {
+        let v = u32::from(!all_points);
         self.light_loops += 1;
-        self.vflow += 1;
+        self.vflow += v;
         let b = self.sub_block(body);
-        self.vflow -= 1;
+        self.vflow -= v;
         self.light_loops -= 1;
         b
     }
@@ -1128,7 +1143,11 @@ impl<'a, 'd> Lowerer<'a, 'd> {
     /// Lowers `e` for storing into a variable of type `to` (declaration or assignment),
     /// checking type and detail.
     fn assign_value(&mut self, e: &'a Expr, to: Type, name: &str, target: Span) -> R {
-        let v = self.expr(e, Some(to.base))?;
+        let saved = self.uniform_target;
+        self.uniform_target = to.detail == Detail::Uniform;
+        let v = self.expr(e, Some(to.base));
+        self.uniform_target = saved;
+        let v = v?;
         self.check_store(v, to, e.span, name, target)
     }
 
@@ -1683,7 +1702,10 @@ impl<'a, 'd> Lowerer<'a, 'd> {
     fn assign(&mut self, e: &'a Expr, op: AssignOp, lhs: &'a Expr, rhs: &'a Expr) -> R {
         let place = self.place(lhs, "assign");
         let target = place.as_ref().map(|p| p.ty.base);
+        let saved = self.uniform_target;
+        self.uniform_target = place.as_ref().is_some_and(|p| p.ty.detail == Detail::Uniform);
         let r = self.expr(rhs, target);
+        self.uniform_target = saved;
         let (place, r) = (place?, r?);
         let name = self.slot_name(place.slot);
         let value = match op {
@@ -1925,7 +1947,27 @@ impl<'a, 'd> Lowerer<'a, 'd> {
         let outs = self.output_positions(&name.name, args.len());
         let mut vals: Vec<CallArg> = Vec::new();
         let mut failed = false;
+        // Spans of the arguments as lowered (channel selection appends two).
+        let mut spans: Vec<Span> = args.iter().map(|a| a.span).collect();
+        let mut channel: Option<(Val, Span)> = None;
         for (k, a) in args.iter().enumerate() {
+            // `texture ("name"[n], …)`, `environment (envname[3], …)`: channel selection on the
+            // map name (PRMan, BMRT, Aqsis) — the name, plus a `"firstchannel", n` option.
+            if k == 0 && matches!(name.name.as_str(), "texture" | "environment" | "shadow") {
+                if let ExprKind::Index(base, idx) = &a.kind {
+                    if let Some(b) = self.expr(base, Some(BaseType::String)) {
+                        if b.ty.base == BaseType::String && b.ty.array.is_none() {
+                            let Some(i) = self.index_value(idx) else {
+                                failed = true;
+                                continue;
+                            };
+                            vals.push(CallArg::Value(b));
+                            channel = Some((i, idx.span));
+                            continue;
+                        }
+                    }
+                }
+            }
             if outs[k] {
                 match self.place(a, "output") {
                     Some(p) => vals.push(CallArg::Place(p)),
@@ -1946,6 +1988,13 @@ impl<'a, 'd> Lowerer<'a, 'd> {
         if failed {
             return None;
         }
+        if let Some((i, span)) = channel {
+            let opt = self.constant(Const::Str("firstchannel".into()), BaseType::String, span);
+            vals.push(CallArg::Value(opt));
+            vals.push(CallArg::Value(i));
+            spans.push(span);
+            spans.push(span);
+        }
         let types: Vec<Type> = vals.iter().map(CallArg::ty).collect();
         let k = match builtins::resolve_expecting(&name.name, &types, expected) {
             Ok(k) => k,
@@ -1957,7 +2006,8 @@ impl<'a, 'd> Lowerer<'a, 'd> {
         let o: &'static Overload = &OVERLOADS[k as usize];
         let mut inputs = Vec::new();
         let mut outputs = Vec::new();
-        let mut detail = if o.always_varying { Detail::Varying } else { Detail::Uniform };
+        let uniform_random = o.name == "random" && self.uniform_target;
+        let mut detail = if o.always_varying && !uniform_random { Detail::Varying } else { Detail::Uniform };
         let mut copy_out = Vec::new();
         for (i, a) in vals.into_iter().enumerate() {
             let p = o.param(i);
@@ -1965,7 +2015,7 @@ impl<'a, 'd> Lowerer<'a, 'd> {
                 CallArg::Value(v) => {
                     detail = detail.join(v.ty.detail);
                     let v = match p {
-                        Some(p) if !p.any && !p.array => self.convert(v, p.ty, args[i].span)?,
+                        Some(p) if !p.any && !p.array => self.convert(v, p.ty, spans[i])?,
                         _ => v,
                     };
                     inputs.push(v.v);
@@ -1974,12 +2024,12 @@ impl<'a, 'd> Lowerer<'a, 'd> {
                 CallArg::Place(pl) => {
                     if pl.index.is_some() {
                         // An array element: written through a temporary, copied back below.
-                        let t = self.new_slot(&format!("{}.out", name.name), pl.ty, SlotKind::Local, args[i].span);
+                        let t = self.new_slot(&format!("{}.out", name.name), pl.ty, SlotKind::Local, spans[i]);
                         outputs.push(Some(t));
-                        copy_out.push((t, pl, args[i].span));
+                        copy_out.push((t, pl, spans[i]));
                     } else {
                         outputs.push(Some(pl.slot));
-                        copy_out.push((pl.slot, pl, args[i].span));
+                        copy_out.push((pl.slot, pl, spans[i]));
                     }
                 }
             }

@@ -972,7 +972,31 @@ impl Parser<'_, '_> {
             let span = e.span.to(close);
             e = self.mk(ExprKind::Index(Box::new(e), Box::new(index)), span);
         }
+        // `x++`, `x--` (C increments, as PRMan 13+ and 3Delight accept): `(x += 1) - 1`.
+        if let Some(op) = self.incdec_at(0) {
+            if matches!(e.kind, ExprKind::Name(_) | ExprKind::Index(..)) {
+                self.bump();
+                self.bump();
+                let span = e.span.to(self.prev_span());
+                let one = self.mk(ExprKind::Number(1.0), span);
+                let assign = self.mk(ExprKind::Assign(op, Box::new(e), Box::new(one)), span);
+                let one = self.mk(ExprKind::Number(1.0), span);
+                let undo = if op == AssignOp::Add { BinaryOp::Sub } else { BinaryOp::Add };
+                e = self.mk(ExprKind::Binary(undo, Box::new(assign), Box::new(one)), span);
+            }
+        }
         Ok(e)
+    }
+
+    /// `++` or `--` at token `n`: two adjacent `+` (or `-`) tokens.
+    fn incdec_at(&self, n: usize) -> Option<AssignOp> {
+        let (a, b) = (self.peek_at(n), self.peek_at(n + 1));
+        let op = match (&a.kind, &b.kind) {
+            (TokenKind::Punct(P::Plus), TokenKind::Punct(P::Plus)) => AssignOp::Add,
+            (TokenKind::Punct(P::Minus), TokenKind::Punct(P::Minus)) => AssignOp::Sub,
+            _ => return None,
+        };
+        (a.span.file == b.span.file && a.span.end == b.span.start).then_some(op)
     }
 
     /// `expr {, expr} close` (the list may be empty); consumes `close`.

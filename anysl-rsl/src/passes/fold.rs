@@ -343,7 +343,8 @@ fn eval_builtin(name: &str, base: BaseType, args: &[Const]) -> Option<Const> {
         }
         "clamp" => {
             let (x, lo, hi) = (scalar(0)?, scalar(1)?, scalar(2)?);
-            Some(Const::Float(x.max(lo).min(hi)))
+            // As the interpreter: the lower bound wins when the bounds cross.
+            Some(Const::Float(x.min(hi).max(lo)))
         }
         "step" => Some(Const::Float(if scalar(1)? < scalar(0)? { 0.0 } else { 1.0 })),
         "length" if a.len() == 1 && a[0].len() == 3 => {
