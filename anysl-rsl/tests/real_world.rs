@@ -326,3 +326,23 @@ fn uniform_assignments_in_light_bodies_without_cone() {
         ["E0214"]
     );
 }
+
+/// Ivan DeWolf's IDscartissue.sl names a variable `light`: shader-type words are keywords only
+/// where a shader definition or a message-passing call (`surface ("Kd", x)`) can start.
+#[test]
+fn shader_type_words_as_variable_names() {
+    let v = runs(
+        r#"float f (float surface) { return surface * 2; }
+        surface t (float light = 0.25;)
+        {
+            color dark = 0;
+            color volume = color (1, .3, .2);
+            float displacement = f (light);
+            float kd = 0;
+            if (surface ("Kd", kd) == 0)
+                kd = 1;
+            Ci = mix (dark, volume, displacement * kd);
+        }"#,
+    );
+    assert!(v.iter().all(|c| (c[0] - 0.5).abs() < 1e-6), "{v:?}");
+}

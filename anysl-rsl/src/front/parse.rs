@@ -392,6 +392,20 @@ impl Parser<'_, '_> {
         }
     }
 
+    /// A variable or parameter name: an identifier, or a shader-type word (`light`,
+    /// `surface`, …), which shaders use as variable names (`color light = …` in Ivan
+    /// DeWolf's IDscartissue.sl) — they are keywords only where a shader or a
+    /// message-passing call can start.
+    fn var_name(&mut self, what: &str) -> PResult<Ident> {
+        match self.peek().kind {
+            TokenKind::Keyword(k) if shader_keyword(k).is_some() => {
+                let span = self.bump().span;
+                Ok(Ident { name: k.as_str().to_owned(), span })
+            }
+            _ => self.ident(what),
+        }
+    }
+
     fn starts_formal(&self) -> bool {
         matches!(self.peek().kind, TokenKind::Keyword(k) if type_keyword(k).is_some() || matches!(k, K::Output | K::Uniform | K::Varying))
     }
@@ -419,7 +433,7 @@ impl Parser<'_, '_> {
                 ty.span = start.to(ty.span);
             }
             loop {
-                let name = self.ident("a parameter name")?;
+                let name = self.var_name("a parameter name")?;
                 let array = if self.eat(P::LBracket) {
                     if self.eat(P::RBracket) {
                         Some(None)
@@ -737,7 +751,7 @@ impl Parser<'_, '_> {
         }
         let mut vars = Vec::new();
         loop {
-            let name = self.ident("a variable name")?;
+            let name = self.var_name("a variable name")?;
             let mut unsized_at = None;
             let mut array = if self.eat(P::LBracket) {
                 if self.at(P::RBracket) {
@@ -1039,6 +1053,11 @@ impl Parser<'_, '_> {
             TokenKind::Keyword(k) if shader_keyword(*k).is_some() && self.peek_at(1).is(P::LParen) => {
                 self.bump();
                 self.call(Ident { name: k.as_str().to_owned(), span: t.span })
+            }
+            // A variable named like a shader type (see `var_name`).
+            TokenKind::Keyword(k) if shader_keyword(*k).is_some() => {
+                self.bump();
+                Ok(self.mk(ExprKind::Name(k.as_str().to_owned()), t.span))
             }
             TokenKind::Punct(P::LParen) => {
                 self.bump();
