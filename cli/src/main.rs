@@ -5,6 +5,7 @@ mod interp_bench;
 mod kernels;
 mod native;
 mod render;
+mod report;
 mod rslc;
 mod table1;
 mod workload;
@@ -39,6 +40,15 @@ enum Command {
     Rslc {
         #[command(subcommand)]
         cmd: rslc::RslcCommand,
+    },
+    /// Write the accuracy-against-cost report (HTML with plots and pictures) and print where it is.
+    Report {
+        /// Folder of `index.html`.
+        #[arg(long, default_value = "out/report")]
+        out: PathBuf,
+        /// Tiny sizes (seconds; for tests, not for reading).
+        #[arg(long)]
+        quick: bool,
     },
     /// Benchmarks.
     Bench {
@@ -208,6 +218,7 @@ fn main() -> ExitCode {
             Ok(code) => return ExitCode::from(code),
             Err(e) => Err(e),
         },
+        Command::Report { out, quick } => report::run(&report::ReportOpts { out, quick }).map(|p| println!("report written to {}", p.display())),
         Command::Bench { which } => match which {
             BenchCommand::Kernels {
                 json,
