@@ -159,6 +159,9 @@ pub mod codes {
     pub const UNINITIALIZED: &str = "W0002";
     /// Warning: a missing texture file (reads as black).
     pub const MISSING_TEXTURE: &str = "W0003";
+    /// Warning: a `uniform` local of a function is assigned under varying control flow, so it
+    /// is made varying (BMRT's noises.h: `uniform float amp` in a loop on a varying width).
+    pub const PROMOTED_TO_VARYING: &str = "W0004";
 }
 
 /// A list of diagnostics from one compilation.
@@ -211,7 +214,13 @@ impl Diagnostics {
 
 impl fmt::Display for Diagnostic {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}[{}]: {}", if self.severity == Severity::Error { "error" } else { "warning" }, self.code, self.message)
+        write!(
+            f,
+            "{}[{}]: {}",
+            if self.severity == Severity::Error { "error" } else { "warning" },
+            self.code,
+            self.message
+        )
     }
 }
 
@@ -220,7 +229,8 @@ fn to_codespan(d: &Diagnostic) -> CsDiagnostic<FileId> {
         Severity::Error => CsSeverity::Error,
         Severity::Warning => CsSeverity::Warning,
     };
-    let mut labels = vec![Label::primary(d.span.file, d.span.start as usize..d.span.end as usize).with_message(&d.label)];
+    let mut labels =
+        vec![Label::primary(d.span.file, d.span.start as usize..d.span.end as usize).with_message(&d.label)];
     for (s, l) in &d.secondary {
         labels.push(Label::secondary(s.file, s.start as usize..s.end as usize).with_message(l));
     }

@@ -346,3 +346,39 @@ fn shader_type_words_as_variable_names() {
     );
     assert!(v.iter().all(|c| (c[0] - 0.5).abs() < 1e-6), "{v:?}");
 }
+
+/// BMRT's noises.h: `filtered_fBm` keeps `uniform float amp` in a loop whose condition
+/// (`fw < 1.0`) is varying. A uniform *local of a function* assigned under varying flow is made
+/// varying with a warning (BMRT, Aqsis); in the shader body it stays an error.
+#[test]
+fn function_locals_promoted_to_varying() {
+    let src = r#"
+        #define filteredsnoise(p,width) ((2 * noise(p) - 1) * (1 - smoothstep (0.2,0.6,width)))
+        float filtered_fBm (point p; float filtwidth; uniform float maxoctaves, lacunarity, gain)
+        {
+            uniform float i;
+            uniform float amp = 1;
+            varying point pp = p;
+            varying float sum = 0, fw = filtwidth;
+            for (i = 0;  i < maxoctaves && fw < 1.0;  i += 1) {
+                sum += amp * filteredsnoise (pp, fw);
+                amp *= gain;  pp *= lacunarity;  fw *= lacunarity;
+            }
+            return sum;
+        }
+        displacement castucco (float freq = 1, Km = 0.2;)
+        {
+            point Pshad = freq * transform ("shader", P);
+            float disp = Km * filtered_fBm (Pshad, sqrt (area (Pshad)), 3, 2, 0.6);
+            P += disp * normalize (N);
+            N = calculatenormal (P);
+        }"#;
+    runs(src);
+    assert_eq!(warning_codes(src), ["W0004", "W0004"]); // `amp` and the counter `i`
+                                                        // Output parameters and shader-body locals keep the rule.
+    assert_eq!(
+        error_codes("void f (output uniform float u) { if (s > 0.5) u = 1; } surface t () { uniform float x; f (x); }"),
+        ["E0214"]
+    );
+    assert_eq!(error_codes("surface t () { uniform float u = 0; if (s > 0.5) u = 1; }"), ["E0214"]);
+}

@@ -150,8 +150,21 @@ pub fn lower_unit(unit: &ast::Unit, shader: Option<&str>, diags: &mut Diagnostic
             }
         },
     };
-    let mut l = Lowerer::new(chosen.kind, diags);
-    l.lower_shader(unit, chosen)
+    // `uniform` locals of functions assigned under varying control flow are made varying:
+    // lower again with them promoted until no new one turns up.
+    let mut promote: HashSet<Span> = HashSet::new();
+    loop {
+        let mark = diags.items.len();
+        let mut l = Lowerer::new(chosen.kind, diags);
+        l.promote = promote.clone();
+        let module = l.lower_shader(unit, chosen);
+        let want = std::mem::take(&mut l.want_promote);
+        if want.is_subset(&promote) {
+            return module;
+        }
+        diags.items.truncate(mark);
+        promote.extend(want);
+    }
 }
 
 struct Lowerer<'a, 'd> {
@@ -177,6 +190,10 @@ struct Lowerer<'a, 'd> {
     /// Lowering the value stored into a uniform variable: `random()` is then uniform (one
     /// number for the whole grid, as in PRMan).
     uniform_target: bool,
+    /// Declarations (name spans) of function-local `uniform` variables lowered as varying.
+    promote: HashSet<Span>,
+    /// Function-local `uniform` variables found assigned under varying control flow.
+    want_promote: HashSet<Span>,
 }
 
 fn kind_of(k: ShaderType) -> ShaderKind {
@@ -388,6 +405,8 @@ impl<'a, 'd> Lowerer<'a, 'd> {
             called: HashSet::new(),
             ret_checked: HashSet::new(),
             uniform_target: false,
+            promote: HashSet::new(),
+            want_promote: HashSet::new(),
         }
     }
 
@@ -1084,7 +1103,22 @@ impl<'a, 'd> Lowerer<'a, 'd> {
                 self.err(codes::TYPE_MISMATCH, ts.span, "a variable cannot be void", "void variable");
                 continue;
             }
-            let ty = Type { base: ts.base, detail: ts.detail.unwrap_or(Detail::Varying), array: d.array };
+            let mut ty = Type { base: ts.base, detail: ts.detail.unwrap_or(Detail::Varying), array: d.array };
+            if ty.detail == Detail::Uniform && self.promote.contains(&d.name.span) {
+                ty.detail = Detail::Varying;
+                self.report(
+                    Diagnostic::warning(
+                        codes::PROMOTED_TO_VARYING,
+                        d.name.span,
+                        format!(
+                            "the uniform variable `{}` is assigned under varying control flow; it is made varying",
+                            d.name.name
+                        ),
+                    )
+                    .with_label("made varying")
+                    .with_note("as BMRT and Aqsis do for function locals; declare it varying to silence this"),
+                );
+            }
             if d.array == Some(0) {
                 self.err(codes::BAD_INDEX, d.span, "an array needs at least one element", "size 0");
             }
@@ -1565,7 +1599,14 @@ impl<'a, 'd> Lowerer<'a, 'd> {
                 Binding::Slot(s) if !v.read_only => {
                     let decl_flow = v.flow;
                     let ty = self.slot_ty(s);
-                    if ty.detail == Detail::Uniform && self.flow() > decl_flow {
+                    if ty.detail == Detail::Uniform
+                        && self.flow() > decl_flow
+                        && self.frames.last().is_some_and(|f| f.func.is_some())
+                        && !self.promote.contains(&v.span)
+                    {
+                        // A local of a function (inlined here): lowered again as varying.
+                        self.want_promote.insert(v.span);
+                    } else if ty.detail == Detail::Uniform && self.flow() > decl_flow {
                         self.report(
                             Diagnostic::error(
                                 codes::UNIFORM_IN_VARYING_FLOW,
