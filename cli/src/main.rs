@@ -1,6 +1,8 @@
 //! The `anysl` command-line tool.
 
 mod demo;
+#[cfg(feature = "jit")]
+mod jit;
 mod interp_bench;
 mod kernels;
 mod native;
@@ -50,10 +52,34 @@ enum Command {
         #[arg(long)]
         quick: bool,
     },
+    /// The run-time LLVM JIT (cargo feature `jit`).
+    #[cfg(feature = "jit")]
+    Jit {
+        #[command(subcommand)]
+        cmd: JitCommand,
+    },
     /// Benchmarks.
     Bench {
         #[command(subcommand)]
         which: BenchCommand,
+    },
+}
+
+#[cfg(feature = "jit")]
+#[derive(Subcommand)]
+enum JitCommand {
+    /// Cross-check: JIT f32 / 8-wide / dual against the monomorphized shader (hand-written
+    /// generic Rust for the Table-1 shaders, the interpreter at the same type otherwise) on
+    /// random points; max error in ulps. Default files: shaders/rsl and the conformance suite.
+    Check {
+        /// `.sl` files (default: every shader in shaders/rsl and tests/rsl/conformance).
+        files: Vec<PathBuf>,
+        /// Random points per comparison.
+        #[arg(long, default_value_t = 10000)]
+        points: usize,
+        /// Print every comparison (default: failures and Table-1 shaders).
+        #[arg(long)]
+        verbose: bool,
     },
 }
 
@@ -105,6 +131,27 @@ enum BenchCommand {
         /// Timed runs per row (the median is reported).
         #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u32).range(1..=1000))]
         runs: u32,
+        /// Only these shaders (repeatable).
+        #[arg(long = "shader")]
+        shaders: Vec<String>,
+    },
+    /// The JIT per Table-1 shader: cold compile time by stage (median), points/s of jit-f32 /
+    /// x4 / x8 / x16 against aot-f32 / aot-f32x8 (hand-written generic Rust) and the
+    /// interpreter, max abs error against f64.
+    #[cfg(feature = "jit")]
+    Jit {
+        /// Also write the rows as JSON to this file.
+        #[arg(long)]
+        json: Option<PathBuf>,
+        /// Shading points per run.
+        #[arg(long, default_value_t = 32768)]
+        points: usize,
+        /// Timed runs per row (the median is reported).
+        #[arg(long, default_value_t = 7)]
+        runs: usize,
+        /// Cold compiles per variant (the median is reported).
+        #[arg(long, default_value_t = 5)]
+        compiles: usize,
         /// Only these shaders (repeatable).
         #[arg(long = "shader")]
         shaders: Vec<String>,
@@ -219,7 +266,31 @@ fn main() -> ExitCode {
             Err(e) => Err(e),
         },
         Command::Report { out, quick } => report::run(&report::ReportOpts { out, quick }).map(|p| println!("report written to {}", p.display())),
+        #[cfg(feature = "jit")]
+        Command::Jit { cmd: JitCommand::Check { files, points, verbose } } => {
+            if jit::check(&files, points.max(16), verbose) {
+                Ok(())
+            } else {
+                Err("jit check: mismatches (see above)".to_string())
+            }
+        }
         Command::Bench { which } => match which {
+            #[cfg(feature = "jit")]
+            BenchCommand::Jit { json, points, runs, compiles, shaders } => {
+                let opts = jit::JitBenchOpts { points: points.max(16), runs: runs.max(1), compiles: compiles.max(1), shaders };
+                jit::bench(&opts).and_then(|rows| {
+                    jit::print_table(&rows);
+                    match json {
+                        Some(path) => {
+                            let text = serde_json::to_string_pretty(&rows).map_err(|e| e.to_string())?;
+                            std::fs::write(&path, text).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+                            println!("rows written to {}", path.display());
+                            Ok(())
+                        }
+                        None => Ok(()),
+                    }
+                })
+            }
             BenchCommand::Kernels {
                 json,
                 points,

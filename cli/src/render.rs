@@ -1,7 +1,7 @@
 //! `anysl render`: one picture of a scene preset with one renderer, shader parameters set by
 //! name from the command line.
 
-use anysl_core::{ParamValue, Shader};
+use anysl_core::{LightShader, ParamValue, Shader, SurfaceShader};
 use anysl_renderers::{
     render_packet, render_packet_with, render_pbrt, render_scalar, scenes, Image, Integrator, PlainShading,
     RenderOptions, Scene,
@@ -51,6 +51,17 @@ impl RendererName {
     }
 }
 
+/// How a shader is run.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum Backend {
+    /// Compiled at run time by the LLVM JIT.
+    Jit,
+    /// Run by the batched interpreter.
+    Interp,
+    /// The compiled (generated or hand-written) Rust shader of that name.
+    Aot,
+}
+
 /// The shader names `--shader` accepts: the Table-1 names plus `plastic` (= `phong`).
 pub fn shader_choices() -> Vec<&'static str> {
     let mut names = Surface::NAMES.to_vec();
@@ -64,10 +75,16 @@ pub struct RenderArgs {
     /// Scene preset.
     #[arg(long, value_enum, default_value_t = SceneName::Table1)]
     pub scene: SceneName,
-    /// Surface shader. For `gallery` it puts this one shader on every object; without it the
-    /// gallery shows all ten (default for the other scenes: phong).
-    #[arg(long, value_parser = clap::builder::PossibleValuesParser::new(shader_choices()))]
+    /// Surface shader: a Table-1 name or an `.sl` file. For `gallery` it puts this one shader
+    /// on every object; without it the gallery shows all ten (default for the other scenes:
+    /// phong).
+    #[arg(long)]
     pub shader: Option<String>,
+    /// Back end: `jit` (the `.sl` compiled at run time; default for `.sl` files when built
+    /// with the `jit` feature), `interp` (the batched interpreter), `aot` (the compiled Rust
+    /// shader of that name; default for names).
+    #[arg(long, value_enum)]
+    pub backend: Option<Backend>,
     /// Renderer.
     #[arg(long, value_enum, default_value_t = RendererName::Packet)]
     pub renderer: RendererName,
@@ -98,7 +115,7 @@ pub struct RenderArgs {
 /// Sets `NAME=VALUE` parameters on `surfaces`: each name must exist on at least one of them
 /// and its value parse as that parameter's type. Errors name the parameter and list the
 /// parameters there are.
-pub fn apply_params(surfaces: &mut [Surface], params: &[String]) -> Result<(), String> {
+pub fn apply_params<S: Shader>(surfaces: &mut [S], params: &[String]) -> Result<(), String> {
     for assignment in params {
         let (name, text) = assignment
             .split_once('=')
@@ -142,10 +159,10 @@ pub fn apply_params(surfaces: &mut [Surface], params: &[String]) -> Result<(), S
     Ok(())
 }
 
-fn unique_shaders(surfaces: &[Surface]) -> Vec<&Surface> {
-    let mut seen: Vec<&Surface> = Vec::new();
+fn unique_shaders<S: Shader>(surfaces: &[S]) -> Vec<&S> {
+    let mut seen: Vec<&S> = Vec::new();
     for s in surfaces {
-        if !seen.iter().any(|t| t.name() == s.name()) {
+        if !seen.iter().any(|t| t.meta().name == s.meta().name) {
             seen.push(s);
         }
     }
@@ -190,13 +207,121 @@ pub fn build_scene(
     })
 }
 
+/// [`render_with`] for any surface shader type (run-time compiled or interpreted shaders).
+pub fn render_any<S: SurfaceShader, L: LightShader>(
+    scene: &Scene<S, L>,
+    renderer: RendererName,
+    lanes: usize,
+    opts: &RenderOptions,
+) -> Image {
+    let needs_duals = opts.derivatives && scene.surfaces.iter().any(|s| s.meta().uses_derivatives);
+    match renderer {
+        RendererName::Packet => match lanes {
+            4 | 16 if needs_duals => render_packet::<F32x8, _, _>(scene, opts),
+            4 => render_packet_with::<F32x4, _, _, _>(scene, opts, 4, PlainShading).0,
+            16 => render_packet_with::<F32x16, _, _, _>(scene, opts, 16, PlainShading).0,
+            _ => render_packet::<F32x8, _, _>(scene, opts),
+        },
+        RendererName::Scalar => render_scalar(scene, opts),
+        RendererName::Pbrt => render_pbrt(scene, opts, Integrator::Active),
+        RendererName::PbrtPassive => render_pbrt(scene, opts, Integrator::Passive),
+    }
+}
+
+/// Sets `NAME=VALUE` parameters on one shader of any type.
+fn apply_params_to<S: Shader>(surface: &mut S, params: &[String]) -> Result<(), String> {
+    for assignment in params {
+        let (name, text) = assignment
+            .split_once('=')
+            .ok_or_else(|| format!("--param {assignment:?}: expected NAME=VALUE, e.g. --param Ks=0.3"))?;
+        let (name, text) = (name.trim(), text.trim());
+        let meta = surface.meta();
+        let info = meta.param(name).ok_or_else(|| {
+            let known: Vec<String> = meta.params.iter().map(|p| format!("{} {}", p.ty.keyword(), p.name)).collect();
+            format!("--param {name}: shader '{}' has no such parameter (parameters: {})", meta.name, known.join(", "))
+        })?;
+        let value = ParamValue::parse(info.ty, text).map_err(|e| format!("--param {name}={text}: {e}"))?;
+        surface.set_param(name, &value).map_err(|e| format!("--param {name}={text}: {e}"))?;
+    }
+    Ok(())
+}
+
+/// The `.sl` file for `--shader`: the path itself, or `shaders/rsl/<name>.sl` for a name.
+fn sl_file(shader: &str) -> PathBuf {
+    if shader.ends_with(".sl") {
+        return PathBuf::from(shader);
+    }
+    let stem = if shader == "phong" { "plastic" } else { shader };
+    PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../shaders/rsl")).join(format!("{stem}.sl"))
+}
+
+fn include_dirs(file: &std::path::Path) -> Vec<PathBuf> {
+    let mut v = vec![PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../shaders/rsl/include"))];
+    if let Some(p) = file.parent() {
+        v.push(p.join("include"));
+    }
+    v
+}
+
+/// Renders a run-time loaded shader (JIT or interpreter) and returns the image.
+fn render_loaded<S: SurfaceShader + Clone>(
+    mut surface: S,
+    args: &RenderArgs,
+    lanes: usize,
+    opts: &RenderOptions,
+) -> Result<Image, String> {
+    apply_params_to(&mut surface, &args.params)?;
+    let lights = table1_lights();
+    let scene = match args.scene {
+        SceneName::Table1 => scenes::table1(surface, lights, args.size),
+        SceneName::Bunny => scenes::bunny(surface, lights, args.size),
+        SceneName::Gallery => scenes::gallery(vec![surface; 12], lights, args.size),
+    };
+    Ok(render_any(&scene, args.renderer, lanes, opts))
+}
+
+fn load_module(file: &std::path::Path) -> Result<anysl_rsl::ir::Module, String> {
+    let copts = anysl_rsl::CompileOptions { include_dirs: include_dirs(file), ..Default::default() };
+    anysl_rsl::compile_file(file, &copts).map(|c| c.module).map_err(|e| e.to_string())
+}
+
+fn render_backend(backend: Backend, shader: &str, args: &RenderArgs, lanes: usize, opts: &RenderOptions) -> Result<Image, String> {
+    let file = sl_file(shader);
+    match backend {
+        Backend::Interp => {
+            let mut m = load_module(&file)?;
+            anysl_rsl::passes::optimize(&mut m, &anysl_rsl::passes::PassOptions::default());
+            let p = anysl_rsl::back::interp::Program::new(m).map_err(|e| format!("{}: {e}", file.display()))?;
+            render_loaded(anysl_rsl::back::interp::InterpShader::new(std::sync::Arc::new(p)), args, lanes, opts)
+        }
+        #[cfg(feature = "jit")]
+        Backend::Jit => {
+            let m = load_module(&file)?;
+            let jit = anysl_jit::JitShader::new(m, anysl_jit::JitOptions::default()).map_err(|e| e.to_string())?;
+            // Compile the variants this render shades with up front, so errors show here.
+            if let Err(e) = jit.variant(anysl_jit::Variant::F32) {
+                eprintln!("note: {e}; shading with the interpreter");
+            }
+            render_loaded(jit, args, lanes, opts)
+        }
+        #[cfg(not(feature = "jit"))]
+        Backend::Jit => Err("--backend jit: this anysl was built without the `jit` feature".into()),
+        Backend::Aot => unreachable!("handled by the caller"),
+    }
+}
+
 /// Renders `scene` with `renderer` (`lanes` for the packet renderer).
 ///
 /// Dual-number packets are compiled for 8 lanes only (each width of `Dual<F32xN>` is a full
 /// copy of every shader; keeping one keeps the build time reasonable): a scene with a shader
 /// that uses derivatives is shaded in packets of 8 whatever `lanes` says, and a note is
 /// printed. Pictures are identical at every width.
-pub fn render_with(scene: &Scene<Surface, Light>, renderer: RendererName, lanes: usize, opts: &RenderOptions) -> Image {
+pub fn render_with<S: SurfaceShader>(
+    scene: &Scene<S, Light>,
+    renderer: RendererName,
+    lanes: usize,
+    opts: &RenderOptions,
+) -> Image {
     let needs_duals = opts.derivatives && scene.surfaces.iter().any(|s| s.meta().uses_derivatives);
     match renderer {
         RendererName::Packet => match lanes {
@@ -220,7 +345,30 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         .lanes
         .parse()
         .map_err(|_| format!("--lanes {}: expected 4, 8 or 16", args.lanes))?;
-    let scene = build_scene(args.scene, args.shader.as_deref(), &args.params, args.size)?;
+    let is_sl = args.shader.as_deref().is_some_and(|s| s.ends_with(".sl"));
+    let default_backend = if is_sl && cfg!(feature = "jit") {
+        Backend::Jit
+    } else if is_sl {
+        Backend::Interp
+    } else {
+        Backend::Aot
+    };
+    let backend = args.backend.unwrap_or(default_backend);
+    // `--backend aot` with an `.sl` file: the compiled shader of the same name.
+    let aot_name = match (backend, args.shader.as_deref()) {
+        (Backend::Aot, Some(s)) if is_sl => {
+            let stem = std::path::Path::new(s).file_stem().map(|x| x.to_string_lossy().to_string()).unwrap_or_default();
+            let stem = if stem == "plastic" { "phong".to_string() } else { stem };
+            if Surface::by_name(&stem).is_none() {
+                return Err(format!(
+                    "--backend aot: no compiled shader named '{stem}' (choices: {}); use --backend jit or interp",
+                    shader_choices().join(", ")
+                ));
+            }
+            Some(stem)
+        }
+        (_, s) => s.map(str::to_string),
+    };
     let opts = RenderOptions {
         spp: args.spp,
         threads: args.threads.map_or(0, |t| t as usize),
@@ -233,18 +381,29 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         (_, Some(name)) => name.clone(),
         (_, None) => "phong".to_string(),
     };
+    let stem = match (&args.shader, is_sl) {
+        (Some(s), true) => std::path::Path::new(s).file_stem().map_or(stem, |x| x.to_string_lossy().to_string()),
+        _ => stem,
+    };
     let output = args
         .output
         .clone()
         .unwrap_or_else(|| PathBuf::from(format!("{stem}.png")));
     let start = Instant::now();
-    let image = render_with(&scene, args.renderer, lanes, &opts);
+    let image = match (backend, args.shader.as_deref()) {
+        (Backend::Aot, _) => {
+            let scene = build_scene(args.scene, aot_name.as_deref(), &args.params, args.size)?;
+            render_with(&scene, args.renderer, lanes, &opts)
+        }
+        (b, shader) => render_backend(b, shader.unwrap_or("phong"), args, lanes, &opts)?,
+    };
     let elapsed = start.elapsed();
     image.save_png(&output)?;
     let what = match args.renderer {
         RendererName::Packet => format!("packet f32x{lanes}"),
         r => r.name().to_string(),
     };
+    let what = format!("{what} ({})", format!("{backend:?}").to_lowercase());
     println!(
         "{}: {}×{} {} with {stem}, {what} renderer, {} spp, rendered in {:.1} ms",
         output.display(),

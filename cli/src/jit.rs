@@ -1,0 +1,387 @@
+//! `anysl jit check` (JIT against the monomorphized build) and `anysl bench jit`.
+
+use anysl_ad::Dual;
+use anysl_core::points::{abs_error_stats, shade_points, shade_points_f64, PointSet, ShadeOut};
+use anysl_jit::{compile_with, ir_passes, CompileStats, JitOptions, JitShader, Variant};
+use anysl_rsl::back::interp::{InterpShader, Program};
+use anysl_rsl::ir::ShaderKind;
+use anysl_rsl::CompileOptions;
+use anysl_shaders::{table1_lights, Light, Surface};
+use anysl_simd::{F32x16, F32x4, F32x8};
+use serde::Serialize;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use std::time::Instant;
+
+/// The folder of the repository's `.sl` shaders.
+pub fn rsl_dir() -> PathBuf {
+    PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../shaders/rsl"))
+}
+
+/// The conformance suite.
+pub fn conformance_dir() -> PathBuf {
+    PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../tests/rsl/conformance"))
+}
+
+fn include_dirs(file: &Path) -> Vec<PathBuf> {
+    let mut v = vec![rsl_dir().join("include")];
+    if let Some(p) = file.parent() {
+        v.push(p.join("include"));
+    }
+    v
+}
+
+/// The hand-written generic Rust shader for an `.sl` file, when there is one (`plastic` is
+/// the Table-1 "phong").
+pub fn aot_for(stem: &str) -> Option<Surface> {
+    Surface::by_name(if stem == "plastic" { "phong" } else { stem })
+}
+
+/// Distance in units in the last place between two f32s (NaN vs anything: infinite).
+fn ulps(a: f32, b: f32) -> u64 {
+    if a == b {
+        return 0;
+    }
+    if a.is_nan() || b.is_nan() {
+        return u64::MAX;
+    }
+    let key = |x: f32| {
+        let i = x.to_bits() as i32;
+        i64::from(if i < 0 { i32::MIN - i } else { i })
+    };
+    (key(a) - key(b)).unsigned_abs()
+}
+
+/// Result of one comparison.
+#[derive(Clone, Debug, Serialize)]
+pub struct CheckRow {
+    /// File stem.
+    pub shader: String,
+    /// `jit-f32 vs f32`, ….
+    pub pair: String,
+    /// The monomorphized side: `aot` (hand-written generic Rust) or `interp`.
+    pub oracle: String,
+    /// Max ulps over all outputs.
+    pub max_ulps: u64,
+    /// Max abs difference.
+    pub max_abs: f64,
+    /// Outputs beyond the bound.
+    pub mismatches: usize,
+    /// Compilation error or note.
+    pub note: String,
+}
+
+/// The bound: more than 4 ulps apart *and* more than `ABS_FLOOR · max(1, |x|)` (values
+/// near zero after cancellation, and transcendentals of the SIMD polynomials, differ in
+/// ulps without differing in value).
+pub const ABS_FLOOR: f64 = 2e-6;
+
+fn compare(a: &ShadeOut<f32>, b: &ShadeOut<f32>) -> (u64, f64, usize) {
+    let (mut mu, mut ma, mut bad) = (0u64, 0.0f64, 0usize);
+    for c in 0..6 {
+        for (x, y) in a.channels[c].iter().zip(&b.channels[c]) {
+            let u = ulps(*x, *y);
+            let d = f64::from((x - y).abs());
+            mu = mu.max(u);
+            if d.is_finite() {
+                ma = ma.max(d);
+            }
+            let scale = f64::from(x.abs().max(y.abs())).max(1.0);
+            if u > 4 && !(d <= ABS_FLOOR * scale) {
+                bad += 1;
+            }
+        }
+    }
+    (mu, ma, bad)
+}
+
+/// Checks one `.sl` file: JIT f32 / x8 / dual-f32 against the monomorphized shader at the
+/// same type on `n` random points.
+pub fn check_file(file: &Path, n: usize) -> Vec<CheckRow> {
+    let stem = file.file_stem().map(|s| s.to_string_lossy().to_string()).unwrap_or_default();
+    let row = |pair: &str, oracle: &str, note: String| CheckRow {
+        shader: stem.clone(),
+        pair: pair.into(),
+        oracle: oracle.into(),
+        max_ulps: 0,
+        max_abs: 0.0,
+        mismatches: 0,
+        note,
+    };
+    let compiled =
+        match anysl_rsl::compile_file(file, &CompileOptions { include_dirs: include_dirs(file), ..Default::default() })
+        {
+            Ok(c) => c,
+            Err(e) => {
+                return vec![row("-", "-", format!("compile error: {}", e.to_string().lines().next().unwrap_or("")))]
+            }
+        };
+    if compiled.module.kind != ShaderKind::Surface {
+        return vec![row("-", "-", format!("skipped: {:?} shader", compiled.module.kind).to_lowercase())];
+    }
+    let jit = match JitShader::new(compiled.module, JitOptions::default()) {
+        Ok(j) => j,
+        Err(e) => return vec![row("-", "-", e.to_string())],
+    };
+    let set = PointSet::random(n, 0x5eed_0005);
+    let lights = table1_lights();
+    let aot = aot_for(&stem);
+    let oracle_name = if aot.is_some() { "aot" } else { "interp" };
+    let mut rows = Vec::new();
+    macro_rules! pair {
+        ($F:ty, $v:expr, $label:expr) => {{
+            match jit.variant($v) {
+                Err(e) => rows.push(row($label, oracle_name, e)),
+                Ok(_) => {
+                    let mut a = ShadeOut::new(set.len());
+                    let mut b = ShadeOut::new(set.len());
+                    shade_points::<$F, JitShader, Light>(&jit, &lights, &set, &mut a);
+                    match &aot {
+                        Some(s) => shade_points::<$F, Surface, Light>(s, &lights, &set, &mut b),
+                        None => shade_points::<$F, InterpShader, Light>(jit.interp(), &lights, &set, &mut b),
+                    }
+                    let (mu, ma, bad) = compare(&a, &b);
+                    let mut r = row($label, oracle_name, String::new());
+                    r.max_ulps = mu;
+                    r.max_abs = ma;
+                    r.mismatches = bad;
+                    rows.push(r);
+                }
+            }
+        }};
+    }
+    pair!(f32, Variant::F32, "jit-f32 vs f32");
+    pair!(F32x8, Variant::X8, "jit-x8 vs f32x8");
+    pair!(Dual<f32>, Variant::DualF32, "jit-dual vs dual-f32");
+    rows
+}
+
+/// The default files: every shader in `shaders/rsl` and the conformance suite.
+pub fn default_files() -> Vec<PathBuf> {
+    let mut files = Vec::new();
+    for dir in [rsl_dir(), rsl_dir().join("standard"), conformance_dir()] {
+        if let Ok(rd) = std::fs::read_dir(&dir) {
+            let mut v: Vec<PathBuf> =
+                rd.flatten().map(|e| e.path()).filter(|p| p.extension().is_some_and(|x| x == "sl")).collect();
+            v.sort();
+            files.extend(v);
+        }
+    }
+    files
+}
+
+/// `anysl jit check`: prints a table; returns false on mismatches or compile failures of
+/// surface shaders.
+pub fn check(files: &[PathBuf], points: usize, verbose: bool) -> bool {
+    let files = if files.is_empty() { default_files() } else { files.to_vec() };
+    let mut ok = true;
+    let (mut n_pairs, mut n_bad, mut worst) = (0usize, 0usize, 0u64);
+    println!("{:<28} {:<22} {:<7} {:>10} {:>10} {:>6}  note", "shader", "pair", "oracle", "max ulps", "max abs", "bad");
+    for f in &files {
+        for r in check_file(f, points) {
+            let failed = r.mismatches > 0 || (r.pair != "-" && !r.note.is_empty());
+            if r.pair != "-" && r.note.is_empty() {
+                n_pairs += 1;
+                worst = worst.max(r.max_ulps);
+            }
+            if failed {
+                ok = false;
+                n_bad += 1;
+            }
+            if verbose || failed || r.pair == "-" || r.oracle == "aot" {
+                println!(
+                    "{:<28} {:<22} {:<7} {:>10} {:>10.2e} {:>6}  {}",
+                    r.shader,
+                    r.pair,
+                    r.oracle,
+                    if r.max_ulps == u64::MAX { "nan".to_string() } else { r.max_ulps.to_string() },
+                    r.max_abs,
+                    r.mismatches,
+                    r.note
+                );
+            }
+        }
+    }
+    println!(
+        "{} files, {n_pairs} comparisons on {points} points each, {n_bad} failing; bound: > 4 ulps and > {ABS_FLOOR:e}·max(1,|x|)",
+        files.len()
+    );
+    ok
+}
+
+/// One row of `anysl bench jit` (the JSON schema).
+#[derive(Clone, Debug, Serialize)]
+pub struct JitBenchRow {
+    /// Table-1 shader name.
+    pub shader: String,
+    /// `jit-f32`, `jit-x4`, `jit-x8`, `jit-x16`, `aot-f32`, `aot-f32x8`, `interp`.
+    pub backend: String,
+    /// Median cold compile time, parse → machine code (0 for aot).
+    pub compile_ms: f64,
+    /// Median points per second.
+    pub points_per_s: f64,
+    /// Max abs error against the f64 reference.
+    pub max_abs_err: f64,
+}
+
+/// Settings of `anysl bench jit`.
+#[derive(Clone, Debug)]
+pub struct JitBenchOpts {
+    /// Points per run.
+    pub points: usize,
+    /// Timed runs (median).
+    pub runs: usize,
+    /// Cold compiles per variant (median).
+    pub compiles: usize,
+    /// Only these shaders.
+    pub shaders: Vec<String>,
+}
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+/// Stage medians of cold compiles: `(stage, ms)` and the LLVM instruction counts.
+pub fn cold_compile(
+    file: &Path,
+    variant: Variant,
+    runs: usize,
+) -> Result<(Vec<(&'static str, f64)>, CompileStats), String> {
+    let mut per_stage: Vec<(&'static str, Vec<f64>)> = Vec::new();
+    let mut last = None;
+    for _ in 0..runs.max(1) {
+        let t = Instant::now();
+        let c =
+            anysl_rsl::compile_file(file, &CompileOptions { include_dirs: include_dirs(file), ..Default::default() })
+                .map_err(|e| e.to_string())?;
+        let parse = t.elapsed().as_secs_f64() * 1e3;
+        let values: Vec<_> = c.module.params.iter().map(|p| p.default.clone()).collect();
+        let cs = compile_with(&c.module, &values, variant, &JitOptions::default(), false).map_err(|e| e.to_string())?;
+        let mut stages = vec![("parse+check", parse)];
+        stages.extend(cs.stats.times_ms.iter().copied());
+        for (s, t) in stages {
+            match per_stage.iter_mut().find(|(n, _)| *n == s) {
+                Some((_, v)) => v.push(t),
+                None => per_stage.push((s, vec![t])),
+            }
+        }
+        last = Some(cs.stats.clone());
+    }
+    Ok((per_stage.into_iter().map(|(s, v)| (s, median(v))).collect(), last.unwrap_or_default()))
+}
+
+/// Runs `anysl bench jit`.
+pub fn bench(opts: &JitBenchOpts) -> Result<Vec<JitBenchRow>, String> {
+    let names: Vec<String> = if opts.shaders.is_empty() {
+        Surface::NAMES.iter().map(|s| s.to_string()).collect()
+    } else {
+        opts.shaders.clone()
+    };
+    let lights = table1_lights();
+    let set = PointSet::random(opts.points, 0x5eed_2010);
+    let mut rows = Vec::new();
+    println!(
+        "{:<9} {:>10} {:>7} {:>9} {:>9} {:>9} {:>9}  {:>16}",
+        "shader", "stage ms:", "parse", "ir", "irgen", "opt", "codegen", "llvm insts"
+    );
+    for name in &names {
+        let file_stem = if name == "phong" { "plastic" } else { name.as_str() };
+        let file = rsl_dir().join(format!("{file_stem}.sl"));
+        let aot = Surface::by_name(name)
+            .ok_or_else(|| format!("unknown shader '{name}' (choices: {})", Surface::NAMES.join(", ")))?;
+        let reference = shade_points_f64::<f64, _, _>(&aot, &lights, &set);
+        let jit =
+            JitShader::from_file(&file, &include_dirs(&file), JitOptions::default()).map_err(|e| e.to_string())?;
+        let mut compile_ms = [0.0f64; 6];
+        for v in [Variant::F32, Variant::X4, Variant::X8, Variant::X16] {
+            let (stages, stats) = cold_compile(&file, v, opts.compiles)?;
+            compile_ms[v.index()] = stages.iter().map(|(_, t)| t).sum();
+            if v == Variant::X8 {
+                let get = |s: &str| stages.iter().find(|(n, _)| *n == s).map_or(0.0, |(_, t)| *t);
+                let insts: Vec<String> = stats.insts.iter().map(|(s, n)| format!("{s}={n}")).collect();
+                println!(
+                    "{name:<9} {:>10} {:>7.2} {:>9.2} {:>9.2} {:>9.2} {:>9.2}  {}",
+                    "x8",
+                    get("parse+check"),
+                    get("ir-passes"),
+                    get("llvm-irgen"),
+                    get("optimize"),
+                    get("codegen"),
+                    insts.join(" ")
+                );
+            }
+            jit.variant(v)?;
+        }
+        let interp_t = Instant::now();
+        let program = {
+            let (m, _) = ir_passes(&jit.module, &jit.values, false);
+            Program::new(m).map_err(|e| e.to_string())?
+        };
+        let interp = InterpShader::new(Arc::new(program));
+        let interp_ms = interp_t.elapsed().as_secs_f64() * 1e3;
+        type Run<'a> = Box<dyn FnMut(&mut ShadeOut<f32>) + 'a>;
+        let mut runners: Vec<(&str, f64, Run)> = vec![
+            ("jit-f32", compile_ms[0], Box::new(|o| shade_points::<f32, _, Light>(&jit, &lights, &set, o))),
+            ("jit-x4", compile_ms[1], Box::new(|o| shade_points::<F32x4, _, Light>(&jit, &lights, &set, o))),
+            ("jit-x8", compile_ms[2], Box::new(|o| shade_points::<F32x8, _, Light>(&jit, &lights, &set, o))),
+            ("jit-x16", compile_ms[3], Box::new(|o| shade_points::<F32x16, _, Light>(&jit, &lights, &set, o))),
+            ("aot-f32", 0.0, Box::new(|o| shade_points::<f32, _, Light>(&aot, &lights, &set, o))),
+            ("aot-f32x8", 0.0, Box::new(|o| shade_points::<F32x8, _, Light>(&aot, &lights, &set, o))),
+            ("interp", interp_ms, Box::new(|o| shade_points::<F32x8, _, Light>(&interp, &lights, &set, o))),
+        ];
+        let mut outs: Vec<ShadeOut<f32>> = runners.iter().map(|_| ShadeOut::new(set.len())).collect();
+        let mut times: Vec<Vec<f64>> = vec![Vec::new(); runners.len()];
+        for (k, (_, _, f)) in runners.iter_mut().enumerate() {
+            f(&mut outs[k]);
+        }
+        // Round-robin timing so drift hits every backend alike.
+        for _ in 0..opts.runs {
+            for (k, (_, _, f)) in runners.iter_mut().enumerate() {
+                let t = Instant::now();
+                f(&mut outs[k]);
+                times[k].push(t.elapsed().as_secs_f64());
+            }
+        }
+        for (k, (b, c, _)) in runners.iter().enumerate() {
+            rows.push(JitBenchRow {
+                shader: name.clone(),
+                backend: (*b).to_string(),
+                compile_ms: *c,
+                points_per_s: set.len() as f64 / median(times[k].clone()),
+                max_abs_err: abs_error_stats(&outs[k], &reference).0,
+            });
+        }
+    }
+    Ok(rows)
+}
+
+/// Prints the throughput table and the jit-x8 / aot-f32x8 ratio.
+pub fn print_table(rows: &[JitBenchRow]) {
+    println!();
+    println!(
+        "{:<9} {:<10} {:>11} {:>13} {:>9} {:>12}",
+        "shader", "backend", "compile ms", "points/s", "vs aot-x8", "max_abs_err"
+    );
+    let mut ratios = Vec::new();
+    for r in rows {
+        let base =
+            rows.iter().find(|x| x.shader == r.shader && x.backend == "aot-f32x8").map_or(f64::NAN, |x| x.points_per_s);
+        if r.backend == "jit-x8" {
+            ratios.push(r.points_per_s / base);
+        }
+        println!(
+            "{:<9} {:<10} {:>11.1} {:>13.3e} {:>8.2}x {:>12.2e}",
+            r.shader,
+            r.backend,
+            r.compile_ms,
+            r.points_per_s,
+            r.points_per_s / base,
+            r.max_abs_err
+        );
+    }
+    if !ratios.is_empty() {
+        let mean = ratios.iter().sum::<f64>() / ratios.len() as f64;
+        println!("jit-x8 / aot-f32x8 over {} shaders: mean {mean:.2}x", ratios.len());
+    }
+}

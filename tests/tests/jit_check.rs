@@ -1,0 +1,138 @@
+//! JIT = monomorphized build: every shader in `shaders/rsl` and every conformance program,
+//! JIT-compiled for `f32`, `F32x8` and `Dual<f32>`, against the same shader monomorphized at
+//! that type (the hand-written generic Rust for the Table-1 shaders, the interpreter for the
+//! rest) on random points. Bound: no output more than 4 ulps *and* more than 2e-6·max(1, |x|)
+//! apart (transcendentals and cancellations near zero differ in ulps without differing in
+//! value). `ANYSL_JIT_POINTS` sets the number of points (default 10 000).
+
+use anysl_ad::Dual;
+use anysl_core::points::{shade_points, PointSet, ShadeOut};
+use anysl_core::ShadingFloat;
+use anysl_jit::{JitOptions, JitShader, Variant};
+use anysl_rsl::back::interp::InterpShader;
+use anysl_rsl::ir::ShaderKind;
+use anysl_rsl::CompileOptions;
+use anysl_shaders::{table1_lights, Light, Surface};
+use anysl_simd::F32x8;
+use std::path::{Path, PathBuf};
+
+fn root() -> PathBuf {
+    PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
+}
+
+fn ulps(a: f32, b: f32) -> u64 {
+    if a == b {
+        return 0;
+    }
+    if a.is_nan() || b.is_nan() {
+        return u64::MAX;
+    }
+    let key = |x: f32| {
+        let i = x.to_bits() as i32;
+        i64::from(if i < 0 { i32::MIN - i } else { i })
+    };
+    (key(a) - key(b)).unsigned_abs()
+}
+
+fn mismatches(a: &ShadeOut<f32>, b: &ShadeOut<f32>) -> (usize, u64) {
+    let (mut bad, mut worst) = (0, 0);
+    for c in 0..6 {
+        for (x, y) in a.channels[c].iter().zip(&b.channels[c]) {
+            let u = ulps(*x, *y);
+            worst = worst.max(u);
+            let d = f64::from((x - y).abs());
+            let scale = f64::from(x.abs().max(y.abs())).max(1.0);
+            if u > 4 && !(d <= 2e-6 * scale) {
+                bad += 1;
+            }
+        }
+    }
+    (bad, worst)
+}
+
+fn pair<F: ShadingFloat>(jit: &JitShader, aot: Option<&Surface>, set: &PointSet, lights: &[Light]) -> (usize, u64) {
+    let mut a = ShadeOut::new(set.len());
+    let mut b = ShadeOut::new(set.len());
+    shade_points::<F, JitShader, Light>(jit, lights, set, &mut a);
+    match aot {
+        Some(s) => shade_points::<F, Surface, Light>(s, lights, set, &mut b),
+        None => shade_points::<F, InterpShader, Light>(jit.interp(), lights, set, &mut b),
+    }
+    mismatches(&a, &b)
+}
+
+fn files() -> Vec<PathBuf> {
+    let mut out = Vec::new();
+    for dir in [root().join("shaders/rsl"), root().join("shaders/rsl/standard"), root().join("tests/rsl/conformance")] {
+        let mut v: Vec<PathBuf> = std::fs::read_dir(&dir)
+            .into_iter()
+            .flatten()
+            .flatten()
+            .map(|e| e.path())
+            .filter(|p| p.extension().is_some_and(|x| x == "sl"))
+            .collect();
+        v.sort();
+        out.extend(v);
+    }
+    out
+}
+
+fn check(file: &Path, n: usize, failures: &mut Vec<String>, skipped: &mut Vec<String>) -> usize {
+    let include = vec![root().join("shaders/rsl/include")];
+    let Ok(c) = anysl_rsl::compile_file(file, &CompileOptions { include_dirs: include, ..Default::default() }) else {
+        return 0;
+    };
+    if c.module.kind != ShaderKind::Surface {
+        return 0;
+    }
+    let stem = file.file_stem().unwrap().to_string_lossy().to_string();
+    let jit = match JitShader::new(c.module, JitOptions::default()) {
+        Ok(j) => j,
+        Err(e) => {
+            failures.push(format!("{stem}: {e}"));
+            return 0;
+        }
+    };
+    for v in [Variant::F32, Variant::X8, Variant::DualF32] {
+        if let Err(e) = jit.variant(v) {
+            // Run-time strings (`format` with numbers), textures: the JIT shader runs on the
+            // interpreter; listed, not failed.
+            if e.contains("not supported by the JIT") {
+                skipped.push(format!("{stem}: {e}"));
+            } else {
+                failures.push(format!("{stem} {v:?}: {e}"));
+            }
+            return 0;
+        }
+    }
+    let aot = Surface::by_name(if stem == "plastic" { "phong" } else { &stem });
+    let set = PointSet::random(n, 0x5eed_0005);
+    let lights = table1_lights();
+    let mut count = 0;
+    for (label, (bad, worst)) in [
+        ("f32", pair::<f32>(&jit, aot.as_ref(), &set, &lights)),
+        ("x8", pair::<F32x8>(&jit, aot.as_ref(), &set, &lights)),
+        ("dual-f32", pair::<Dual<f32>>(&jit, aot.as_ref(), &set, &lights)),
+    ] {
+        count += 1;
+        if bad > 0 {
+            failures.push(format!("{stem} jit-{label}: {bad} outputs beyond the bound (max {worst} ulps)"));
+        }
+    }
+    count
+}
+
+#[test]
+fn jit_matches_monomorphized_build() {
+    let n: usize = std::env::var("ANYSL_JIT_POINTS").ok().and_then(|s| s.parse().ok()).unwrap_or(10_000);
+    let mut failures = Vec::new();
+    let mut skipped = Vec::new();
+    let mut pairs = 0;
+    for f in files() {
+        pairs += check(&f, n, &mut failures, &mut skipped);
+    }
+    eprintln!("{pairs} comparisons; interpreter fallback for:\n{}", skipped.join("\n"));
+    assert!(skipped.len() <= 8, "too many shaders the JIT cannot compile:\n{}", skipped.join("\n"));
+    assert!(pairs > 100, "only {pairs} comparisons ran");
+    assert!(failures.is_empty(), "{} failures:\n{}", failures.len(), failures.join("\n"));
+}
