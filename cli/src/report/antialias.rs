@@ -182,8 +182,8 @@ pub fn section(sz: &Sizes) -> Result<Section, String> {
 
 /// Why the AD-filtered picture is not the supersampled one.
 const EXPLANATION: &str = "<h3>Reading the numbers</h3><ul>\
-<li>Only checker, brick and parquet call <code>filterstep</code>; starball, screen and wood compute hard edges \
-(or, for wood, smooth noise with sharp ring transitions) without derivatives, so their <i>AD 1 spp</i> picture \
+<li>Only checker, brick and parquet call <code>filterstep</code>; starball, screen and wood compute their \
+patterns without derivatives, so their <i>AD 1 spp</i> picture \
 <i>is</i> the point-sampled one — the derivative-activity analysis keeps them on plain floats. Filtering them \
 would take rewriting the shader with <code>filterstep</code>/<code>filteredpulse</code>, not a different \
 number type.</li>\
@@ -196,4 +196,4 @@ The error that remains is this bias, not noise, so it does not shrink like super
 everywhere for <i>checker ×4</i>) it is wider, and the filtered square wave no longer averages to grey as the \
 true integral does.</li>\
 <li>The sphere's silhouette is geometry: one ray per pixel cannot antialias it, whatever the shader does. \
-At these sizes the silhouette pixels are a large share of the remaining error of every 1-spp method.</li></ul>";
+Its aliased edge pixels add the same error to every 1-spp method, filtered or not.</li></ul>";

@@ -144,8 +144,9 @@ pub fn section(sz: &Sizes) -> Result<Section, String> {
         "<p>Where bounds are loose: every comparison whose operands overlap is \"maybe\", so both branches run \
          and the hull is taken; noise sums many gradient terms whose dependency on the same input intervals \
          is lost (the classic interval dependency problem), and loops that keep a \"maybe\" condition past \
-         <code>INTERVAL_LOOP_LIMIT</code> are widened to unbounded. Smooth shaders (phong, glass) stay close \
-         to 1 for small boxes.</p>",
+         <code>INTERVAL_LOOP_LIMIT</code> are widened to unbounded. Even the lighting alone (phong) loses a \
+         factor of several: the same normal and view vector enter normalize, dot products and pow more than \
+         once, and each use widens independently.</p>",
     );
     let gm = (cost_ratios.iter().map(|c| c.ln()).sum::<f64>() / cost_ratios.len() as f64).exp();
     let summary = vec![
