@@ -2546,7 +2546,7 @@ impl<'c> Cg<'c, '_> {
             "printf" => Val::Void,
             "match" => {
                 let (p, s) = (Self::as_str(&args[0]), Self::as_str(&args[1]));
-                Val::Num(vec![self.fc(if simple_match(&p, &s) { 1.0 } else { 0.0 })])
+                Val::Num(vec![self.fc(if anysl_rsl::back::rust::rt::simple_match(&p, &s) { 1.0 } else { 0.0 })])
             }
             "surface" | "lightsource" | "displacement" | "atmosphere" | "incident" | "opposite" | "attribute"
             | "option" | "rendererinfo" | "textureinfo" => Val::Num(vec![self.fc(0.0)]),
@@ -2585,34 +2585,4 @@ impl<'c> Cg<'c, '_> {
         let wk = self.sel(self.cmp(FloatPredicate::OGT, wl2, zero), self.div(self.fc(1.0), self.sqrt(wl2)), zero);
         (0..3).map(|c| self.sel(rescale, self.mul(w[c], wk), unit[c])).collect()
     }
-}
-
-/// `match(pattern, subject)` as the interpreter defines it.
-fn simple_match(pat: &str, subj: &str) -> bool {
-    fn here(p: &[char], s: &[char]) -> bool {
-        match p {
-            [] => true,
-            ['$'] => s.is_empty(),
-            [c, '*', rest @ ..] => {
-                let mut i = 0;
-                loop {
-                    if here(rest, &s[i..]) {
-                        return true;
-                    }
-                    if i < s.len() && (*c == '.' || s[i] == *c) {
-                        i += 1;
-                    } else {
-                        return false;
-                    }
-                }
-            }
-            [c, rest @ ..] => !s.is_empty() && (*c == '.' || s[0] == *c) && here(rest, &s[1..]),
-        }
-    }
-    let p: Vec<char> = pat.chars().collect();
-    let s: Vec<char> = subj.chars().collect();
-    if let Some(rest) = p.strip_prefix(&['^']) {
-        return here(rest, &s);
-    }
-    (0..=s.len()).any(|i| here(&p, &s[i..]))
 }
