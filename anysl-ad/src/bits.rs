@@ -35,10 +35,7 @@ impl<F: ShadingFloat> IBits<F> {
     }
     #[inline(always)]
     fn combine(self, rhs: Self, bits: F::Bits) -> Self {
-        Self {
-            bits,
-            known: self.known & rhs.known,
-        }
+        Self { bits, known: self.known & rhs.known }
     }
 }
 
@@ -70,10 +67,7 @@ impl<F: ShadingFloat> Shr<u32> for IBits<F> {
     type Output = Self;
     #[inline(always)]
     fn shr(self, n: u32) -> Self {
-        Self {
-            bits: self.bits >> n,
-            known: self.known,
-        }
+        Self { bits: self.bits >> n, known: self.known }
     }
 }
 
@@ -81,10 +75,7 @@ impl<F: ShadingFloat> Shl<u32> for IBits<F> {
     type Output = Self;
     #[inline(always)]
     fn shl(self, n: u32) -> Self {
-        Self {
-            bits: self.bits << n,
-            known: self.known,
-        }
+        Self { bits: self.bits << n, known: self.known }
     }
 }
 
@@ -92,10 +83,7 @@ impl<F: ShadingFloat> LatticeBits for IBits<F> {
     type Mask = IMask<F::Mask>;
     #[inline(always)]
     fn splat(v: u32) -> Self {
-        Self {
-            bits: F::Bits::splat(v),
-            known: F::Mask::splat(true),
-        }
+        Self { bits: F::Bits::splat(v), known: F::Mask::splat(true) }
     }
     #[inline(always)]
     fn wrapping_add(self, rhs: Self) -> Self {

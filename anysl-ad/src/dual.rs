@@ -49,39 +49,23 @@ impl<F: ShadingFloat> Dual<F> {
     #[inline(always)]
     #[must_use]
     pub fn seed_x(val: F) -> Self {
-        Self {
-            val,
-            ddx: F::c(1.0),
-            ddy: F::c(0.0),
-        }
+        Self { val, ddx: F::c(1.0), ddy: F::c(0.0) }
     }
     /// The screen coordinate y itself: derivatives `(0, 1)`.
     #[inline(always)]
     #[must_use]
     pub fn seed_y(val: F) -> Self {
-        Self {
-            val,
-            ddx: F::c(0.0),
-            ddy: F::c(1.0),
-        }
+        Self { val, ddx: F::c(0.0), ddy: F::c(1.0) }
     }
     /// The chain rule for a unary function: value `f` and derivative factor `k = f'(val)`.
     #[inline(always)]
     fn chain(self, f: F, k: F) -> Self {
-        Self {
-            val: f,
-            ddx: self.ddx * k,
-            ddy: self.ddy * k,
-        }
+        Self { val: f, ddx: self.ddx * k, ddy: self.ddy * k }
     }
     /// The chain rule for a binary function with partial derivatives `ka`, `kb`.
     #[inline(always)]
     fn chain2(self, rhs: Self, f: F, ka: F, kb: F) -> Self {
-        Self {
-            val: f,
-            ddx: self.ddx * ka + rhs.ddx * kb,
-            ddy: self.ddy * ka + rhs.ddy * kb,
-        }
+        Self { val: f, ddx: self.ddx * ka + rhs.ddx * kb, ddy: self.ddy * ka + rhs.ddy * kb }
     }
 }
 
@@ -89,11 +73,7 @@ impl<F: ShadingFloat> Add for Dual<F> {
     type Output = Self;
     #[inline(always)]
     fn add(self, r: Self) -> Self {
-        Self {
-            val: self.val + r.val,
-            ddx: self.ddx + r.ddx,
-            ddy: self.ddy + r.ddy,
-        }
+        Self { val: self.val + r.val, ddx: self.ddx + r.ddx, ddy: self.ddy + r.ddy }
     }
 }
 
@@ -101,11 +81,7 @@ impl<F: ShadingFloat> Sub for Dual<F> {
     type Output = Self;
     #[inline(always)]
     fn sub(self, r: Self) -> Self {
-        Self {
-            val: self.val - r.val,
-            ddx: self.ddx - r.ddx,
-            ddy: self.ddy - r.ddy,
-        }
+        Self { val: self.val - r.val, ddx: self.ddx - r.ddx, ddy: self.ddy - r.ddy }
     }
 }
 
@@ -141,11 +117,7 @@ impl<F: ShadingFloat> Neg for Dual<F> {
     type Output = Self;
     #[inline(always)]
     fn neg(self) -> Self {
-        Self {
-            val: -self.val,
-            ddx: -self.ddx,
-            ddy: -self.ddy,
-        }
+        Self { val: -self.val, ddx: -self.ddx, ddy: -self.ddy }
     }
 }
 
@@ -168,11 +140,7 @@ impl<F: ShadingFloat> Blend<Dual<F>> for Dual<F> {
     }
     #[inline(always)]
     fn widen(self) -> Self {
-        Self {
-            val: self.val.widen(),
-            ddx: self.ddx.widen(),
-            ddy: self.ddy.widen(),
-        }
+        Self { val: self.val.widen(), ddx: self.ddx.widen(), ddy: self.ddy.widen() }
     }
 }
 
@@ -209,11 +177,7 @@ impl<F: ShadingFloat> ShadingFloat for Dual<F> {
 
     #[inline(always)]
     fn select(m: F::Mask, a: Self, b: Self) -> Self {
-        Self {
-            val: F::select(m, a.val, b.val),
-            ddx: F::select(m, a.ddx, b.ddx),
-            ddy: F::select(m, a.ddy, b.ddy),
-        }
+        Self { val: F::select(m, a.val, b.val), ddx: F::select(m, a.ddx, b.ddx), ddy: F::select(m, a.ddy, b.ddy) }
     }
     #[inline(always)]
     fn lt(self, rhs: Self) -> F::Mask {
@@ -236,11 +200,7 @@ impl<F: ShadingFloat> ShadingFloat for Dual<F> {
     #[inline(always)]
     fn abs(self) -> Self {
         let neg = self.val.lt(F::c(0.0));
-        Self {
-            val: self.val.abs(),
-            ddx: F::select(neg, -self.ddx, self.ddx),
-            ddy: F::select(neg, -self.ddy, self.ddy),
-        }
+        Self { val: self.val.abs(), ddx: F::select(neg, -self.ddx, self.ddx), ddy: F::select(neg, -self.ddy, self.ddy) }
     }
     #[inline(always)]
     fn floor(self) -> Self {
@@ -263,20 +223,14 @@ impl<F: ShadingFloat> ShadingFloat for Dual<F> {
     fn min(self, rhs: Self) -> Self {
         let take_rhs = rhs.val.lt(self.val) | self.val.is_nan();
         let pick = <Self as ShadingFloat>::select(take_rhs, rhs, self);
-        Self {
-            val: self.val.min(rhs.val),
-            ..pick
-        }
+        Self { val: self.val.min(rhs.val), ..pick }
     }
     /// Derivatives of the operand chosen; ties take `self`.
     #[inline(always)]
     fn max(self, rhs: Self) -> Self {
         let take_rhs = self.val.lt(rhs.val) | self.val.is_nan();
         let pick = <Self as ShadingFloat>::select(take_rhs, rhs, self);
-        Self {
-            val: self.val.max(rhs.val),
-            ..pick
-        }
+        Self { val: self.val.max(rhs.val), ..pick }
     }
     /// `1/(2√x)`; 0 at x = 0.
     #[inline(always)]
@@ -387,11 +341,7 @@ impl<F: ShadingFloat> ShadingFloat for Dual<F> {
     }
     #[inline(always)]
     fn with_derivs(self, dx: Self, dy: Self) -> Self {
-        Self {
-            val: self.val,
-            ddx: dx.val,
-            ddy: dy.val,
-        }
+        Self { val: self.val, ddx: dx.val, ddy: dy.val }
     }
     #[inline(always)]
     fn lower(self, i: usize) -> f64 {

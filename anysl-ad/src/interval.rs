@@ -49,19 +49,13 @@ impl<F: ShadingFloat> Interval<F> {
     #[inline(always)]
     #[must_use]
     pub fn entire() -> Self {
-        Self {
-            lo: -inf::<F>(),
-            hi: inf(),
-        }
+        Self { lo: -inf::<F>(), hi: inf() }
     }
     /// The smallest interval containing both.
     #[inline(always)]
     #[must_use]
     pub fn hull(a: Self, b: Self) -> Self {
-        Self {
-            lo: a.lo.min(b.lo),
-            hi: a.hi.max(b.hi),
-        }
+        Self { lo: a.lo.min(b.lo), hi: a.hi.max(b.hi) }
     }
     /// Lower bound.
     #[inline(always)]
@@ -104,10 +98,7 @@ impl<F: ShadingFloat> Interval<F> {
     #[inline(always)]
     fn exact(lo: F, hi: F) -> Self {
         let nan = lo.is_nan() | hi.is_nan();
-        Self {
-            lo: F::select(nan, -inf::<F>(), lo),
-            hi: F::select(nan, inf(), hi),
-        }
+        Self { lo: F::select(nan, -inf::<F>(), lo), hi: F::select(nan, inf(), hi) }
     }
     /// Bounds from round-to-nearest results, each pushed outward by `ulps`.
     #[inline(always)]
@@ -117,10 +108,7 @@ impl<F: ShadingFloat> Interval<F> {
     /// `self` where `m`, else the entire line (e.g. outside a function's domain).
     #[inline(always)]
     fn or_entire(self, m: F::Mask) -> Self {
-        Self {
-            lo: F::select(m, self.lo, -inf::<F>()),
-            hi: F::select(m, self.hi, inf()),
-        }
+        Self { lo: F::select(m, self.lo, -inf::<F>()), hi: F::select(m, self.hi, inf()) }
     }
     /// Lanes that surely do not contain 0.
     #[inline(always)]
@@ -160,10 +148,7 @@ impl<F: ShadingFloat> Neg for Interval<F> {
     type Output = Self;
     #[inline(always)]
     fn neg(self) -> Self {
-        Self {
-            lo: -self.hi,
-            hi: -self.lo,
-        }
+        Self { lo: -self.hi, hi: -self.lo }
     }
 }
 
@@ -301,72 +286,44 @@ impl<F: ShadingFloat> ShadingFloat for Interval<F> {
     }
     #[inline(always)]
     fn floor(self) -> Self {
-        Self {
-            lo: self.lo.floor(),
-            hi: self.hi.floor(),
-        }
+        Self { lo: self.lo.floor(), hi: self.hi.floor() }
     }
     #[inline(always)]
     fn ceil(self) -> Self {
-        Self {
-            lo: self.lo.ceil(),
-            hi: self.hi.ceil(),
-        }
+        Self { lo: self.lo.ceil(), hi: self.hi.ceil() }
     }
     #[inline(always)]
     fn round(self) -> Self {
-        Self {
-            lo: self.lo.round(),
-            hi: self.hi.round(),
-        }
+        Self { lo: self.lo.round(), hi: self.hi.round() }
     }
     #[inline(always)]
     fn trunc(self) -> Self {
-        Self {
-            lo: self.lo.trunc(),
-            hi: self.hi.trunc(),
-        }
+        Self { lo: self.lo.trunc(), hi: self.hi.trunc() }
     }
     #[inline(always)]
     fn min(self, rhs: Self) -> Self {
-        Self {
-            lo: self.lo.min(rhs.lo),
-            hi: self.hi.min(rhs.hi),
-        }
+        Self { lo: self.lo.min(rhs.lo), hi: self.hi.min(rhs.hi) }
     }
     #[inline(always)]
     fn max(self, rhs: Self) -> Self {
-        Self {
-            lo: self.lo.max(rhs.lo),
-            hi: self.hi.max(rhs.hi),
-        }
+        Self { lo: self.lo.max(rhs.lo), hi: self.hi.max(rhs.hi) }
     }
     /// √ of the non-negative part; entirely negative (all NaN) gives the entire line.
     #[inline(always)]
     fn sqrt(self) -> Self {
         let z = F::c(0.0);
         let r = Self::rounded(self.lo.max(z).sqrt(), self.hi.sqrt(), EXACT_OP_ULPS);
-        Self {
-            lo: r.lo.max(z),
-            hi: r.hi,
-        }
-        .or_entire(self.hi.ge(z))
+        Self { lo: r.lo.max(z), hi: r.hi }.or_entire(self.hi.ge(z))
     }
     #[inline(always)]
     fn exp(self) -> Self {
         let r = Self::increasing(self.lo, self.hi, F::exp);
-        Self {
-            lo: r.lo.max(F::c(0.0)),
-            hi: r.hi,
-        }
+        Self { lo: r.lo.max(F::c(0.0)), hi: r.hi }
     }
     #[inline(always)]
     fn exp2(self) -> Self {
         let r = Self::increasing(self.lo, self.hi, F::exp2);
-        Self {
-            lo: r.lo.max(F::c(0.0)),
-            hi: r.hi,
-        }
+        Self { lo: r.lo.max(F::c(0.0)), hi: r.hi }
     }
     /// ln of the non-negative part (`ln 0 = -∞`); entirely negative gives the entire line.
     #[inline(always)]
@@ -466,10 +423,7 @@ impl<F: ShadingFloat> ShadingFloat for Interval<F> {
         let (lo, hi) = corners(y.lo, y.hi, x.lo, x.hi, F::atan2);
         let r = Self::rounded(lo, hi, TRANSCENDENTAL_ULPS);
         let all = Self::rounded(F::c(-PI), F::c(PI), TRANSCENDENTAL_ULPS);
-        Self {
-            lo: F::select(monotone, r.lo, all.lo),
-            hi: F::select(monotone, r.hi, all.hi),
-        }
+        Self { lo: F::select(monotone, r.lo, all.lo), hi: F::select(monotone, r.hi, all.hi) }
     }
 
     /// Known where `floor(lo) == floor(hi)`.
@@ -482,10 +436,7 @@ impl<F: ShadingFloat> ShadingFloat for Interval<F> {
     fn bits_to_unit(h: IBits<F>) -> Self {
         let v = F::bits_to_unit(h.bits());
         let known = h.known();
-        Self {
-            lo: F::select(known, v, F::c(0.0)),
-            hi: F::select(known, v, F::c(1.0 - 1.0 / 16_777_216.0)),
-        }
+        Self { lo: F::select(known, v, F::c(0.0)), hi: F::select(known, v, F::c(1.0 - 1.0 / 16_777_216.0)) }
     }
     /// The integer where known (widened when `F` cannot hold it exactly), the whole i32
     /// range elsewhere.

@@ -19,28 +19,19 @@ impl<M: Mask> IMask<M> {
     #[inline(always)]
     #[must_use]
     pub fn new(possibly_true: M, possibly_false: M) -> Self {
-        Self {
-            possibly_true,
-            possibly_false,
-        }
+        Self { possibly_true, possibly_false }
     }
     /// A two-valued mask: every lane surely `m`.
     #[inline(always)]
     #[must_use]
     pub fn exact(m: M) -> Self {
-        Self {
-            possibly_true: m,
-            possibly_false: !m,
-        }
+        Self { possibly_true: m, possibly_false: !m }
     }
     /// "Maybe" in the lanes of `m`, surely false elsewhere.
     #[inline(always)]
     #[must_use]
     pub fn maybe_where(m: M) -> Self {
-        Self {
-            possibly_true: m,
-            possibly_false: M::splat(true),
-        }
+        Self { possibly_true: m, possibly_false: M::splat(true) }
     }
     /// Lanes where the condition may hold.
     #[inline(always)]
@@ -100,10 +91,7 @@ impl<M: Mask> Not for IMask<M> {
     type Output = Self;
     #[inline(always)]
     fn not(self) -> Self {
-        Self {
-            possibly_true: self.possibly_false,
-            possibly_false: self.possibly_true,
-        }
+        Self { possibly_true: self.possibly_false, possibly_false: self.possibly_true }
     }
 }
 

@@ -27,21 +27,13 @@ fn is_binary32<F: ShadingFloat>() -> bool {
 /// The smallest positive subnormal of the inner format.
 #[inline(always)]
 pub(crate) fn tiny<F: ShadingFloat>() -> F {
-    F::c(if is_binary32::<F>() {
-        f64::from(f32::from_bits(1))
-    } else {
-        f64::from_bits(1)
-    })
+    F::c(if is_binary32::<F>() { f64::from(f32::from_bits(1)) } else { f64::from_bits(1) })
 }
 
 /// The largest finite number of the inner format.
 #[inline(always)]
 pub(crate) fn max_finite<F: ShadingFloat>() -> F {
-    F::c(if is_binary32::<F>() {
-        f64::from(f32::MAX)
-    } else {
-        f64::MAX
-    })
+    F::c(if is_binary32::<F>() { f64::from(f32::MAX) } else { f64::MAX })
 }
 
 /// `+∞`.

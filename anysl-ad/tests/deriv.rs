@@ -50,10 +50,7 @@ impl Case {
 fn check<F: ShadingFloat>(tol: f64) {
     let close = |name: &str, c: &Case, got: Dual<F>, want: f64| {
         let g = got.lane(0);
-        assert!(
-            (g - want).abs() <= tol * (want.abs() + 1.0),
-            "{name} at {c:?}: {g} vs {want}"
-        );
+        assert!((g - want).abs() <= tol * (want.abs() + 1.0), "{name} at {c:?}: {g} vs {want}");
     };
     let mut rng = Rng::new(0xDE21);
     for _ in 0..500 {
@@ -78,12 +75,7 @@ fn check<F: ShadingFloat>(tol: f64) {
             let want = ((c.u - edge) / w + 0.5).clamp(0.0, 1.0);
             close("filterstep", &c, filterstep(Dual::c(edge), u), want);
             let pulse = ((c.u - edge) / w + 0.5).clamp(0.0, 1.0) - ((c.u - edge - 0.5) / w + 0.5).clamp(0.0, 1.0);
-            close(
-                "filteredpulse",
-                &c,
-                filteredpulse(Dual::c(edge), Dual::c(edge + 0.5), u),
-                pulse,
-            );
+            close("filteredpulse", &c, filteredpulse(Dual::c(edge), Dual::c(edge + 0.5), u), pulse);
         }
         // P on the paraboloid (u, v, u² + v²): Du(P) × Dv(P) = (-2u, -2v, 1).
         let p = Vec3::new(u, v, u * u + v * v);

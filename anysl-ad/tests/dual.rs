@@ -79,11 +79,7 @@ fn unary_matches_fd<F: Inner>() {
             let fd = central(|t| p.apply(t), x);
             let dx = p.apply(Dual::seed_x(F::from_f64(x)));
             let dy = p.apply(Dual::seed_y(F::from_f64(x)));
-            assert!(
-                close(dx.ddx.to_f64(), fd, F::TOL),
-                "{p:?}'({x}) = {:?}, fd {fd}",
-                dx.ddx
-            );
+            assert!(close(dx.ddx.to_f64(), fd, F::TOL), "{p:?}'({x}) = {:?}, fd {fd}", dx.ddx);
             assert!(close(dy.ddy.to_f64(), fd, F::TOL), "{p:?} ∂/∂y at {x}");
             assert_eq!(dx.ddy.to_f64(), 0.0, "{p:?}: ∂/∂y of an x seed");
             assert_eq!(dx.val.to_f64(), p.apply(F::from_f64(x)).to_f64(), "{p:?}: value");
@@ -128,16 +124,8 @@ fn binary_matches_fd<F: Inner>() {
             let d = p.apply(Dual::seed_x(F::from_f64(a)), Dual::seed_y(F::from_f64(b)));
             let fa = central(|t| p.apply(t, b), a);
             let fb = central(|t| p.apply(a, t), b);
-            assert!(
-                close(d.ddx.to_f64(), fa, F::TOL),
-                "{p:?}({a}, {b}) ∂/∂a {:?} vs {fa}",
-                d.ddx
-            );
-            assert!(
-                close(d.ddy.to_f64(), fb, F::TOL),
-                "{p:?}({a}, {b}) ∂/∂b {:?} vs {fb}",
-                d.ddy
-            );
+            assert!(close(d.ddx.to_f64(), fa, F::TOL), "{p:?}({a}, {b}) ∂/∂a {:?} vs {fa}", d.ddx);
+            assert!(close(d.ddy.to_f64(), fb, F::TOL), "{p:?}({a}, {b}) ∂/∂b {:?} vs {fb}", d.ddy);
         }
     }
     // Negative bases with integer exponents: ∂/∂x = y·x^(y-1); ∂/∂y has no meaning (0).
@@ -146,11 +134,7 @@ fn binary_matches_fd<F: Inner>() {
         let n = rng.range(-4.0, 4.0).round();
         let d = Dual::seed_x(F::from_f64(a)).pow(Dual::seed_y(F::from_f64(n)));
         let fa = central(|t| t.powf(n), a);
-        assert!(
-            close(d.ddx.to_f64(), fa, F::TOL),
-            "pow({a}, {n})' = {:?} vs {fa}",
-            d.ddx
-        );
+        assert!(close(d.ddx.to_f64(), fa, F::TOL), "pow({a}, {n})' = {:?} vs {fa}", d.ddx);
         assert_eq!(d.ddy.to_f64(), 0.0, "pow({a}, {n}) ∂/∂y");
     }
 }
@@ -189,12 +173,8 @@ fn comp2d<F: ShadingFloat>(x: F, y: F) -> F {
 
 fn compositions_match<F: Inner>() {
     type Pair<F> = (&'static str, fn(Dual<F>) -> Dual<F>, fn(f64) -> f64);
-    let fns: [Pair<F>; 4] = [
-        ("comp1", comp1, comp1),
-        ("comp2", comp2, comp2),
-        ("comp3", comp3, comp3),
-        ("comp4", comp4, comp4),
-    ];
+    let fns: [Pair<F>; 4] =
+        [("comp1", comp1, comp1), ("comp2", comp2, comp2), ("comp3", comp3, comp3), ("comp4", comp4, comp4)];
     let mut rng = Rng::new(0xC0);
     for (name, fd_dual, f) in fns {
         for _ in 0..400 {
@@ -209,10 +189,7 @@ fn compositions_match<F: Inner>() {
         }
     }
     for _ in 0..400 {
-        let (x, y) = (
-            F::from_f64(rng.range(0.2, 3.0)).to_f64(),
-            F::from_f64(rng.range(-3.0, 3.0)).to_f64(),
-        );
+        let (x, y) = (F::from_f64(rng.range(0.2, 3.0)).to_f64(), F::from_f64(rng.range(-3.0, 3.0)).to_f64());
         let d = comp2d(Dual::seed_x(F::from_f64(x)), Dual::seed_y(F::from_f64(y)));
         let fx = central(|t| comp2d(t, y), x);
         let fy = central(|t| comp2d(x, t), y);
@@ -267,19 +244,7 @@ fn singular_points_have_the_documented_derivatives() {
 #[test]
 fn finite_values_have_finite_derivatives() {
     let mut rng = Rng::new(0xF1);
-    let special = [
-        0.0f32,
-        -0.0,
-        1.0,
-        -1.0,
-        f32::MIN_POSITIVE,
-        1e-45,
-        -1e-45,
-        f32::MAX,
-        f32::MIN,
-        0.5,
-        2.0,
-    ];
+    let special = [0.0f32, -0.0, 1.0, -1.0, f32::MIN_POSITIVE, 1e-45, -1e-45, f32::MAX, f32::MIN, 0.5, 2.0];
     let mut values: Vec<f32> = special.to_vec();
     while values.len() < 40_000 {
         let v = f32::from_bits(rng.next_u64() as u32);

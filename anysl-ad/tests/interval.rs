@@ -68,27 +68,16 @@ fn gen_box(rng: &mut Rng, sp: &[f64]) -> (f32, f32) {
             3 | 4 => {
                 let s = sp[rng.below(sp.len() as u64) as usize];
                 let scale = s.abs().max(1.0);
-                let off = if rng.below(4) == 0 {
-                    0.0
-                } else {
-                    rng.sign() * rng.log(-8.0, -1.0) * scale
-                };
+                let off = if rng.below(4) == 0 { 0.0 } else { rng.sign() * rng.log(-8.0, -1.0) * scale };
                 (s + off, rng.log(-9.0, 0.0) * scale)
             }
             5 => {
                 // A point, somewhere.
-                let c = if rng.below(2) == 0 {
-                    rng.range(-10.0, 10.0)
-                } else {
-                    rng.sign() * rng.log(-45.0, 38.5)
-                };
+                let c = if rng.below(2) == 0 { rng.range(-10.0, 10.0) } else { rng.sign() * rng.log(-45.0, 38.5) };
                 (c, 0.0)
             }
             6 => {
-                let (a, b) = (
-                    f32::from_bits(rng.next_u64() as u32),
-                    f32::from_bits(rng.next_u64() as u32),
-                );
+                let (a, b) = (f32::from_bits(rng.next_u64() as u32), f32::from_bits(rng.next_u64() as u32));
                 if a.is_nan() || b.is_nan() {
                     continue;
                 }
@@ -96,11 +85,7 @@ fn gen_box(rng: &mut Rng, sp: &[f64]) -> (f32, f32) {
             }
             7 => {
                 let x = (rng.sign() * rng.log(-3.0, 6.0)) as f32;
-                return if rng.below(2) == 0 {
-                    (x, f32::INFINITY)
-                } else {
-                    (f32::NEG_INFINITY, x)
-                };
+                return if rng.below(2) == 0 { (x, f32::INFINITY) } else { (f32::NEG_INFINITY, x) };
             }
             _ => {
                 let m = rng.log(0.0, 38.0);
@@ -177,12 +162,7 @@ fn unary_primitives_contain_every_sample() {
                 }
             }
         }
-        assert!(
-            misses.is_empty(),
-            "{} misses, e.g.\n{}",
-            misses.len(),
-            misses[..misses.len().min(10)].join("\n")
-        );
+        assert!(misses.is_empty(), "{} misses, e.g.\n{}", misses.len(), misses[..misses.len().min(10)].join("\n"));
         assert!(checked > BOXES * SAMPLES / 4, "{p:?}: only {checked} non-NaN samples");
     }
 }
@@ -193,10 +173,7 @@ fn binary_primitives_contain_every_sample() {
     for p in BINARY {
         let name = format!("{p:?}");
         let (spa, spb) = match p {
-            Binary::Pow => (
-                vec![0.0, 1.0, -1.0, -2.0, 0.5, -0.5],
-                vec![0.0, 1.0, 2.0, 3.0, -1.0, -2.0, 0.5, -0.5],
-            ),
+            Binary::Pow => (vec![0.0, 1.0, -1.0, -2.0, 0.5, -0.5], vec![0.0, 1.0, 2.0, 3.0, -1.0, -2.0, 0.5, -0.5]),
             _ => (specials(&name), specials(&name)),
         };
         let mut misses = Vec::new();
@@ -231,12 +208,7 @@ fn binary_primitives_contain_every_sample() {
                 }
             }
         }
-        assert!(
-            misses.is_empty(),
-            "{} misses, e.g.\n{}",
-            misses.len(),
-            misses[..misses.len().min(10)].join("\n")
-        );
+        assert!(misses.is_empty(), "{} misses, e.g.\n{}", misses.len(), misses[..misses.len().min(10)].join("\n"));
         assert!(checked > BOXES * 100 / 4, "{p:?}: only {checked} non-NaN samples");
     }
 }
@@ -251,19 +223,9 @@ fn results_are_tight() {
     let cases: Vec<(&str, I, f64, f64)> = vec![
         ("sin [0, 3]", u(Unary::Sin, 0.0, 3.0), 0.0, 1.0),
         ("sin [0, 3.1]", u(Unary::Sin, 0.0, 3.1), 0.0, 1.0),
-        (
-            "sin [-0.5, 0.5]",
-            u(Unary::Sin, -0.5, 0.5),
-            -(0.5f64.sin()),
-            0.5f64.sin(),
-        ),
+        ("sin [-0.5, 0.5]", u(Unary::Sin, -0.5, 0.5), -(0.5f64.sin()), 0.5f64.sin()),
         ("sin [1, 10]", u(Unary::Sin, 1.0, 10.0), -1.0, 1.0),
-        (
-            "sin at 1e7",
-            u(Unary::Sin, 1e7, 1e7),
-            f64::from(1e7f32.sin()),
-            f64::from(1e7f32.sin()),
-        ),
+        ("sin at 1e7", u(Unary::Sin, 1e7, 1e7), f64::from(1e7f32.sin()), f64::from(1e7f32.sin())),
         ("cos [-1, 1]", u(Unary::Cos, -1.0, 1.0), 1f64.cos(), 1.0),
         ("cos [2, 4]", u(Unary::Cos, 2.0, 4.0), -1.0, 2f64.cos().max(4f64.cos())),
         ("tan [-1, 1]", u(Unary::Tan, -1.0, 1.0), -(1f64.tan()), 1f64.tan()),
@@ -276,12 +238,7 @@ fn results_are_tight() {
         ("exp2 [-1, 3]", u(Unary::Exp2, -1.0, 3.0), 0.5, 8.0),
         ("asin [-2, 0.5]", u(Unary::Asin, -2.0, 0.5), -FRAC_PI_2, 0.5f64.asin()),
         ("acos [0, 2]", u(Unary::Acos, 0.0, 2.0), 0.0, FRAC_PI_2),
-        (
-            "atan [-inf, 1]",
-            u(Unary::Atan, f32::NEG_INFINITY, 1.0),
-            -FRAC_PI_2,
-            1f64.atan(),
-        ),
+        ("atan [-inf, 1]", u(Unary::Atan, f32::NEG_INFINITY, 1.0), -FRAC_PI_2, 1f64.atan()),
         ("abs [-3, 2]", u(Unary::Abs, -3.0, 2.0), 0.0, 3.0),
         ("floor [-1.5, 2.5]", u(Unary::Floor, -1.5, 2.5), -2.0, 2.0),
         ("round [-1.5, 2.5]", u(Unary::Round, -1.5, 2.5), -2.0, 3.0),
@@ -298,33 +255,15 @@ fn results_are_tight() {
         ("pow neg even", b(Binary::Pow, (-3.0, -2.0), (2.0, 2.0)), 4.0, 9.0),
         ("pow neg run", b(Binary::Pow, (-2.0, -2.0), (1.5, 3.5)), -8.0, 8.0),
         ("pow neg none", b(Binary::Pow, (-2.0, -1.0), (0.2, 0.8)), -inf, inf),
-        (
-            "atan2 x>0",
-            b(Binary::Atan2, (-1.0, 1.0), (1.0, 2.0)),
-            -FRAC_PI_2 / 2.0,
-            FRAC_PI_2 / 2.0,
-        ),
-        (
-            "atan2 y>0",
-            b(Binary::Atan2, (1.0, 2.0), (-1.0, 1.0)),
-            1f64.atan2(1.0),
-            1f64.atan2(-1.0),
-        ),
+        ("atan2 x>0", b(Binary::Atan2, (-1.0, 1.0), (1.0, 2.0)), -FRAC_PI_2 / 2.0, FRAC_PI_2 / 2.0),
+        ("atan2 y>0", b(Binary::Atan2, (1.0, 2.0), (-1.0, 1.0)), 1f64.atan2(1.0), 1f64.atan2(-1.0)),
         ("atan2 cut", b(Binary::Atan2, (-1.0, 1.0), (-2.0, -1.0)), -PI, PI),
     ];
     for (name, r, a, bnd) in cases {
         let slack = |v: f64| 1e-6 + 16.0 * f64::from(f32::EPSILON) * v.abs();
         let (lo, hi) = (f64::from(r.lo()), f64::from(r.hi()));
-        let ok_lo = if a.is_infinite() {
-            lo == a
-        } else {
-            lo <= a && lo >= a - slack(a)
-        };
-        let ok_hi = if bnd.is_infinite() {
-            hi == bnd
-        } else {
-            hi >= bnd && hi <= bnd + slack(bnd)
-        };
+        let ok_lo = if a.is_infinite() { lo == a } else { lo <= a && lo >= a - slack(a) };
+        let ok_hi = if bnd.is_infinite() { hi == bnd } else { hi >= bnd && hi <= bnd + slack(bnd) };
         assert!(ok_lo && ok_hi, "{name}: [{lo}, {hi}] vs expected [{a}, {bnd}]");
     }
     // Exact sums stay exact; inexact ones move one ulp outward, on the side of the error (two
@@ -337,10 +276,7 @@ fn results_are_tight() {
     assert!(s.hi() == 1.0 && s.lo() < 1.0 && s.lo() >= 1.0 - f32::EPSILON);
     let s = I::point(3.0) - I::point(1e-7);
     let ulp = 2.0 * f32::EPSILON;
-    assert!(
-        s.hi() == 3.0 && s.lo() <= 3.0 - ulp && s.lo() >= 3.0 - 2.0 * ulp,
-        "{s:?}"
-    );
+    assert!(s.hi() == 3.0 && s.lo() <= 3.0 - ulp && s.lo() >= 3.0 - 2.0 * ulp, "{s:?}");
 }
 
 #[test]
@@ -368,12 +304,7 @@ fn constants_contain_their_value() {
 
 #[test]
 fn nan_policy() {
-    for r in [
-        I::new(f32::NAN, 1.0),
-        I::point(f32::NAN),
-        I::c(f64::NAN),
-        I::from_lanes(&[f64::NAN]),
-    ] {
+    for r in [I::new(f32::NAN, 1.0), I::point(f32::NAN), I::c(f64::NAN), I::from_lanes(&[f64::NAN])] {
         assert_eq!((r.lo(), r.hi()), (f32::NEG_INFINITY, f32::INFINITY));
         assert!(r.is_nan().any() && !r.is_nan().all());
     }

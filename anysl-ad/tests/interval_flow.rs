@@ -24,16 +24,8 @@ fn comparisons_are_three_valued() {
     assert_eq!(tf(a.lt(b)), (true, false), "surely less");
     assert_eq!(tf(b.lt(a)), (false, true), "surely not less");
     assert_eq!(tf(a.lt(c)), (true, true), "maybe");
-    assert_eq!(
-        tf(I::new(1.0, 2.0).lt(I::new(2.0, 3.0))),
-        (true, true),
-        "touching: 2 < 2 fails"
-    );
-    assert_eq!(
-        tf(I::new(1.0, 2.0).le(I::new(2.0, 3.0))),
-        (true, false),
-        "touching: ≤ holds"
-    );
+    assert_eq!(tf(I::new(1.0, 2.0).lt(I::new(2.0, 3.0))), (true, true), "touching: 2 < 2 fails");
+    assert_eq!(tf(I::new(1.0, 2.0).le(I::new(2.0, 3.0))), (true, false), "touching: ≤ holds");
     assert_eq!(tf(I::point(2.0).eq(I::point(2.0))), (true, false));
     assert_eq!(tf(a.eq(c)), (true, true));
     assert_eq!(tf(a.eq(b)), (false, true));
@@ -113,13 +105,7 @@ fn exec_if_else_with_maybe_takes_the_hull() {
     assert_eq!((y.lo(), y.hi()), (-1.0, -1.0));
     // choose() blends the same way.
     let mut e = Exec::<I>::new();
-    let v = e.choose(I::new(-1.0, 1.0).gt(I::c(0.0)), |_, then| {
-        if then {
-            I::c(10.0)
-        } else {
-            I::c(20.0)
-        }
-    });
+    let v = e.choose(I::new(-1.0, 1.0).gt(I::c(0.0)), |_, then| if then { I::c(10.0) } else { I::c(20.0) });
     assert_eq!((v.lo(), v.hi()), (10.0, 20.0));
 }
 
@@ -180,10 +166,7 @@ fn lattice_bits_track_knowledge() {
     assert_eq!(tf(k.eq_mask(ib(0xF0, false))), (true, true));
     assert_eq!(k.lane(0), 0xF0);
     let unit = I::bits_to_unit(ib(0x1234_5600, true));
-    assert_eq!(
-        (unit.lo(), unit.hi()),
-        (f32::bits_to_unit(0x1234_5600), f32::bits_to_unit(0x1234_5600))
-    );
+    assert_eq!((unit.lo(), unit.hi()), (f32::bits_to_unit(0x1234_5600), f32::bits_to_unit(0x1234_5600)));
     let unit = I::bits_to_unit(ib(0, false));
     assert_eq!((unit.lo(), unit.hi()), (0.0, 1.0 - 1.0 / 16_777_216.0));
     let s = I::bits_to_float_signed(ib((-5i32) as u32, true));
@@ -222,11 +205,7 @@ fn noise_of_a_box_contains_point_noise() {
                 };
                 (f64::from(lo[k]) + f * (f64::from(hi[k]) - f64::from(lo[k]))) as f32
             };
-            let p = Vec3::new(
-                t(0).clamp(lo[0], hi[0]),
-                t(1).clamp(lo[1], hi[1]),
-                t(2).clamp(lo[2], hi[2]),
-            );
+            let p = Vec3::new(t(0).clamp(lo[0], hi[0]), t(1).clamp(lo[1], hi[1]), t(2).clamp(lo[2], hi[2]));
             let v = noise3(p);
             assert!(r.contains(v), "noise3 box {lo:?}..{hi:?} = {r:?} misses {v} at {p:?}");
             let cv = cellnoise(NoiseDomain::D3(p));

@@ -43,10 +43,7 @@ fn check_lanes(name: &str, wide: Dual<F32x8>, scalar: impl Fn(usize) -> Dual<f32
 }
 
 fn exact_unary(p: Unary) -> bool {
-    matches!(
-        p,
-        Unary::Neg | Unary::Abs | Unary::Floor | Unary::Ceil | Unary::Round | Unary::Trunc | Unary::Sqrt
-    )
+    matches!(p, Unary::Neg | Unary::Abs | Unary::Floor | Unary::Ceil | Unary::Round | Unary::Trunc | Unary::Sqrt)
 }
 
 fn point(rng: &mut Rng, p: Unary) -> f32 {
@@ -81,17 +78,8 @@ fn dual_f32x8_matches_dual_f32_per_lane() {
             });
             let b: [f32; 8] = core::array::from_fn(|_| (rng.sign() * rng.log(-2.0, 0.6)) as f32);
             let wide = p.apply(Dual::seed_x(F32x8::from(a)), Dual::seed_y(F32x8::from(b)));
-            let rel = if matches!(p, Binary::Pow | Binary::Atan2) {
-                1e-6
-            } else {
-                0.0
-            };
-            check_lanes(
-                &format!("{p:?}"),
-                wide,
-                |i| p.apply(Dual::seed_x(a[i]), Dual::seed_y(b[i])),
-                rel,
-            );
+            let rel = if matches!(p, Binary::Pow | Binary::Atan2) { 1e-6 } else { 0.0 };
+            check_lanes(&format!("{p:?}"), wide, |i| p.apply(Dual::seed_x(a[i]), Dual::seed_y(b[i])), rel);
         }
     }
 }
@@ -114,12 +102,7 @@ fn dual_f32x8_compositions_match_per_lane() {
         let a = Dual::seed_x(F32x8::from(x));
         let b = Dual::seed_y(F32x8::from(y));
         let m = Dual::select(a.lt(b), a, b);
-        check_lanes(
-            "select",
-            m,
-            |i| Dual::select(x[i] < y[i], Dual::seed_x(x[i]), Dual::seed_y(y[i])),
-            0.0,
-        );
+        check_lanes("select", m, |i| Dual::select(x[i] < y[i], Dual::seed_x(x[i]), Dual::seed_y(y[i])), 0.0);
     }
 }
 

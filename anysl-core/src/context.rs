@@ -56,16 +56,8 @@ impl<F: Copy> Globals<F> {
     /// intervals).
     #[must_use]
     pub fn zip<G: Copy, H>(&self, o: &Globals<G>, f: impl Fn(F, G) -> H) -> Globals<H> {
-        let v = |a: Vec3<F>, b: Vec3<G>| Vec3 {
-            x: f(a.x, b.x),
-            y: f(a.y, b.y),
-            z: f(a.z, b.z),
-        };
-        let c = |a: Color<F>, b: Color<G>| Color {
-            r: f(a.r, b.r),
-            g: f(a.g, b.g),
-            b: f(a.b, b.b),
-        };
+        let v = |a: Vec3<F>, b: Vec3<G>| Vec3 { x: f(a.x, b.x), y: f(a.y, b.y), z: f(a.z, b.z) };
+        let c = |a: Color<F>, b: Color<G>| Color { r: f(a.r, b.r), g: f(a.g, b.g), b: f(a.b, b.b) };
         Globals {
             P: v(self.P, o.P),
             N: v(self.N, o.N),
@@ -150,16 +142,10 @@ pub struct SurfaceOutput<F> {
 
 impl<F: ShadingFloat> Blend<F> for SurfaceOutput<F> {
     fn blend(m: F::Mask, a: Self, b: Self) -> Self {
-        Self {
-            Ci: Blend::blend(m, a.Ci, b.Ci),
-            Oi: Blend::blend(m, a.Oi, b.Oi),
-        }
+        Self { Ci: Blend::blend(m, a.Ci, b.Ci), Oi: Blend::blend(m, a.Oi, b.Oi) }
     }
     fn widen(self) -> Self {
-        Self {
-            Ci: self.Ci.widen(),
-            Oi: self.Oi.widen(),
-        }
+        Self { Ci: self.Ci.widen(), Oi: self.Oi.widen() }
     }
 }
 
@@ -233,12 +219,7 @@ impl<F: ShadingFloat> ConeTest<F> {
     pub fn new(axis: Vec3<F>, angle: F) -> Self {
         let pi = F::c(core::f64::consts::PI);
         let c = angle.min(pi).cos();
-        Self {
-            axis,
-            c2a2: c * c * axis.length_squared(),
-            narrow: c.ge(F::c(0.0)),
-            all: angle.ge(pi),
-        }
+        Self { axis, c2a2: c * c * axis.length_squared(), narrow: c.ge(F::c(0.0)), all: angle.ge(pi) }
     }
     /// Lanes whose `dir` lies inside the cone.
     #[inline(always)]
@@ -365,12 +346,7 @@ impl<'a, F: ShadingFloat, L: LightShader> PointContext<'a, F, L> {
     #[inline(always)]
     #[must_use]
     pub fn new(globals: Globals<F>, lights: &'a [L]) -> Self {
-        Self {
-            globals,
-            lights,
-            horizon: Color::c(0.6, 0.6, 0.6),
-            zenith: Color::c(0.2, 0.3, 0.8),
-        }
+        Self { globals, lights, horizon: Color::c(0.6, 0.6, 0.6), zenith: Color::c(0.2, 0.3, 0.8) }
     }
 }
 

@@ -69,13 +69,7 @@ impl<F: ShadingFloat> Exec<F> {
     #[must_use]
     pub fn with_mask(active: F::Mask) -> Self {
         let no = F::Mask::splat(false);
-        Self {
-            active,
-            broken: no,
-            continued: no,
-            returned: no,
-            widening: false,
-        }
+        Self { active, broken: no, continued: no, returned: no, widening: false }
     }
     /// The lanes currently live.
     #[inline(always)]
@@ -101,11 +95,7 @@ impl<F: ShadingFloat> Exec<F> {
     #[inline(always)]
     pub fn assign<T: Blend<F>>(&self, dst: &mut T, value: T) {
         let blended = T::blend(self.active, value, *dst);
-        *dst = if <F::Mask as Mask>::THREE_VALUED && self.widening {
-            blended.widen()
-        } else {
-            blended
-        };
+        *dst = if <F::Mask as Mask>::THREE_VALUED && self.widening { blended.widen() } else { blended };
     }
 
     /// Runs `body` with the mask narrowed to `cond`; skipped when no live lane has `cond`.

@@ -98,12 +98,8 @@ impl PointSet {
             let fx = 1.0 / 256.0;
             push3(field::DPDX, [0, 1, 2].map(|k| fx * (tangent[k] + 0.2 * bitangent[k])));
             push3(field::DPDY, [0, 1, 2].map(|k| fx * (bitangent[k] - 0.15 * tangent[k])));
-            let (s, t, u, v) = (
-                rng.uniform(0.0, 1.0),
-                rng.uniform(0.0, 1.0),
-                rng.uniform(0.0, 1.0),
-                rng.uniform(0.0, 1.0),
-            );
+            let (s, t, u, v) =
+                (rng.uniform(0.0, 1.0), rng.uniform(0.0, 1.0), rng.uniform(0.0, 1.0), rng.uniform(0.0, 1.0));
             for (i, val) in [
                 (field::S, s),
                 (field::T, t),
@@ -160,11 +156,7 @@ impl PointSet {
         let dpdx = self.load3::<F>(field::DPDX, i);
         let dpdy = self.load3::<F>(field::DPDY, i);
         let seeded = |v: Vec3<F>| {
-            Vec3::new(
-                v.x.with_derivs(dpdx.x, dpdy.x),
-                v.y.with_derivs(dpdx.y, dpdy.y),
-                v.z.with_derivs(dpdx.z, dpdy.z),
-            )
+            Vec3::new(v.x.with_derivs(dpdx.x, dpdy.x), v.y.with_derivs(dpdx.y, dpdy.y), v.z.with_derivs(dpdx.z, dpdy.z))
         };
         let (dsdx, dsdy, dtdx, dtdy) = (
             self.load::<F>(field::DSDX, i),
@@ -208,9 +200,7 @@ impl<T: Copy + Default> ShadeOut<T> {
     /// Zeroed output for `n` points.
     #[must_use]
     pub fn new(n: usize) -> Self {
-        Self {
-            channels: core::array::from_fn(|_| vec![T::default(); n]),
-        }
+        Self { channels: core::array::from_fn(|_| vec![T::default(); n]) }
     }
 }
 
@@ -261,12 +251,7 @@ where
             }
         }
     }
-    shader.visit(Job::<F, L> {
-        lights,
-        set,
-        out,
-        _f: core::marker::PhantomData,
-    });
+    shader.visit(Job::<F, L> { lights, set, out, _f: core::marker::PhantomData });
 }
 
 /// Shades every point with instantiation `F`, keeping full lane values as f64 (used for
@@ -300,11 +285,7 @@ where
             out
         }
     }
-    shader.visit(Job::<F, L> {
-        lights,
-        set,
-        _f: core::marker::PhantomData,
-    })
+    shader.visit(Job::<F, L> { lights, set, _f: core::marker::PhantomData })
 }
 
 /// Absolute-error statistics of `got` against `reference` over all points and channels:
@@ -331,8 +312,6 @@ pub fn abs_error_stats(got: &ShadeOut<f32>, reference: &ShadeOut<f64>) -> (f64, 
     }
     errs.sort_by(|a, b| a.partial_cmp(b).expect("NaN mapped to inf"));
     let max = *errs.last().expect("non-empty");
-    let idx = ((errs.len() as f64 * 0.999).ceil() as usize)
-        .saturating_sub(1)
-        .min(errs.len() - 1);
+    let idx = ((errs.len() as f64 * 0.999).ceil() as usize).saturating_sub(1).min(errs.len() - 1);
     (max, errs[idx])
 }

@@ -138,16 +138,8 @@ impl ParamValue {
         if ty == ParamType::String {
             return Ok(Self::String(text.trim_matches('"').to_string()));
         }
-        let cleaned: String = text
-            .chars()
-            .map(|c| {
-                if matches!(c, '[' | ']' | '(' | ')' | ',') {
-                    ' '
-                } else {
-                    c
-                }
-            })
-            .collect();
+        let cleaned: String =
+            text.chars().map(|c| if matches!(c, '[' | ']' | '(' | ')' | ',') { ' ' } else { c }).collect();
         let nums: Result<Vec<f64>, _> = cleaned.split_whitespace().map(str::parse::<f64>).collect();
         let nums = nums.map_err(|_| format!("expected a {} value, got {text:?}", ty.keyword()))?;
         match (ty, nums.len()) {
@@ -241,11 +233,7 @@ impl fmt::Display for ParamError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             Self::Unknown { shader, name, known } => {
-                write!(
-                    f,
-                    "shader '{shader}' has no parameter '{name}' (parameters: {})",
-                    known.join(", ")
-                )
+                write!(f, "shader '{shader}' has no parameter '{name}' (parameters: {})", known.join(", "))
             }
             Self::Type { name, expected, got } => {
                 write!(f, "parameter '{name}' is a {}, cannot take {got}", expected.keyword())

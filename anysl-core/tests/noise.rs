@@ -68,11 +68,7 @@ fn noise_range_and_mean() {
     let mut rng = Rng(1);
     let mut vals = Vec::new();
     for _ in 0..20_000 {
-        let p = Vec3::<f64>::new(
-            rng.uniform(-50.0, 50.0),
-            rng.uniform(-50.0, 50.0),
-            rng.uniform(-50.0, 50.0),
-        );
+        let p = Vec3::<f64>::new(rng.uniform(-50.0, 50.0), rng.uniform(-50.0, 50.0), rng.uniform(-50.0, 50.0));
         let n = noise(NoiseDomain::D3(p));
         let s = snoise(NoiseDomain::D3(p));
         assert!((0.0..=1.0).contains(&n), "noise out of range: {n}");
@@ -148,22 +144,14 @@ fn noise_keeps_detail_at_1e7() {
         let p = Vec3::<f32>::new(1.0e7 + k as f32, 2.0e7 - k as f32, 1.0e7);
         distinct.insert(cellnoise(NoiseDomain::D3(p)).to_bits());
     }
-    assert!(
-        distinct.len() > 60,
-        "cellnoise collapsed at 1e7: {} distinct",
-        distinct.len()
-    );
+    assert!(distinct.len() > 60, "cellnoise collapsed at 1e7: {} distinct", distinct.len());
 }
 
 #[test]
 fn pnoise_repeats_with_its_period() {
     let mut rng = Rng(5);
     for _ in 0..2000 {
-        let p = Vec3::<f64>::new(
-            rng.uniform(-20.0, 20.0),
-            rng.uniform(-20.0, 20.0),
-            rng.uniform(-20.0, 20.0),
-        );
+        let p = Vec3::<f64>::new(rng.uniform(-20.0, 20.0), rng.uniform(-20.0, 20.0), rng.uniform(-20.0, 20.0));
         let per = Vec3::<f64>::c(4.0, 5.0, 3.0);
         let a = pnoise(NoiseDomain::D3(p), NoiseDomain::D3(per));
         let b = pnoise(NoiseDomain::D3(p + Vec3::c(4.0, -10.0, 6.0)), NoiseDomain::D3(per));

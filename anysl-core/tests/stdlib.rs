@@ -110,12 +110,8 @@ fn spline_interpolates_catmull_rom_knots_and_linear() {
     }
     let lin = SplineBasis::LINEAR;
     assert_relative_eq!(spline(&lin, 1.0 / 6.0, &knots), 2.5, epsilon = 1e-12);
-    let colors = [
-        Color::<f64>::c(0.0, 0.0, 0.0),
-        Color::c(1.0, 0.0, 0.0),
-        Color::c(0.0, 1.0, 0.0),
-        Color::c(0.0, 0.0, 1.0),
-    ];
+    let colors =
+        [Color::<f64>::c(0.0, 0.0, 0.0), Color::c(1.0, 0.0, 0.0), Color::c(0.0, 1.0, 0.0), Color::c(0.0, 0.0, 1.0)];
     let c = spline(&b, 0.0, &colors);
     assert_relative_eq!(c.r, 1.0, epsilon = 1e-12);
     // B-spline of constant knots is that constant (partition of unity).
@@ -132,20 +128,8 @@ fn spline_interpolates_catmull_rom_knots_and_linear() {
 
 #[test]
 fn color_spaces_round_trip() {
-    let spaces = [
-        ColorSpace::Hsv,
-        ColorSpace::Hsl,
-        ColorSpace::Xyz,
-        ColorSpace::XyY,
-        ColorSpace::Yiq,
-    ];
-    let samples = [
-        [0.2, 0.5, 0.9],
-        [1.0, 0.0, 0.0],
-        [0.3, 0.3, 0.3],
-        [0.0, 0.0, 0.0],
-        [0.9, 0.8, 0.1],
-    ];
+    let spaces = [ColorSpace::Hsv, ColorSpace::Hsl, ColorSpace::Xyz, ColorSpace::XyY, ColorSpace::Yiq];
+    let samples = [[0.2, 0.5, 0.9], [1.0, 0.0, 0.0], [0.3, 0.3, 0.3], [0.0, 0.0, 0.0], [0.9, 0.8, 0.1]];
     for s in spaces {
         for c in samples {
             let rgb = Color::<f64>::from_array(c);
@@ -193,24 +177,11 @@ fn matrix_inverse_transform_and_singular() {
 
 #[test]
 fn ptlined_and_rotate() {
-    let d = ptlined(
-        Vec3::<f64>::c(0.0, 0.0, 0.0),
-        Vec3::c(2.0, 0.0, 0.0),
-        Vec3::c(1.0, 3.0, 0.0),
-    );
+    let d = ptlined(Vec3::<f64>::c(0.0, 0.0, 0.0), Vec3::c(2.0, 0.0, 0.0), Vec3::c(1.0, 3.0, 0.0));
     assert_relative_eq!(d, 3.0);
-    let d = ptlined(
-        Vec3::<f64>::c(0.0, 0.0, 0.0),
-        Vec3::c(0.0, 0.0, 0.0),
-        Vec3::c(0.0, 4.0, 0.0),
-    );
+    let d = ptlined(Vec3::<f64>::c(0.0, 0.0, 0.0), Vec3::c(0.0, 0.0, 0.0), Vec3::c(0.0, 4.0, 0.0));
     assert_relative_eq!(d, 4.0);
-    let r = rotate(
-        Vec3::<f64>::c(1.0, 0.0, 0.0),
-        PI / 2.0,
-        Vec3::zero(),
-        Vec3::c(0.0, 0.0, 1.0),
-    );
+    let r = rotate(Vec3::<f64>::c(1.0, 0.0, 0.0), PI / 2.0, Vec3::zero(), Vec3::c(0.0, 0.0, 1.0));
     assert!((r.y.abs() - 1.0).abs() < 1e-12 && r.x.abs() < 1e-12);
 }
 
@@ -247,13 +218,16 @@ fn program_exec(a: f32, b: f32, n: u32) -> (f32, f32) {
     let limit = n as f32;
     e.loop_(|e| {
         e.break_if(!i.lt(limit));
-        e.if_else(x.gt(b), |e, then| {
-            if then {
-                e.update(&mut x, |x| x - b * 0.5)
-            } else {
-                e.update(&mut x, |x| x + 1.25)
-            }
-        });
+        e.if_else(
+            x.gt(b),
+            |e, then| {
+                if then {
+                    e.update(&mut x, |x| x - b * 0.5)
+                } else {
+                    e.update(&mut x, |x| x + 1.25)
+                }
+            },
+        );
         e.continue_if(fmod(i, 3.0).eq(1.0));
         e.update(&mut acc, |acc| acc + x);
         e.break_if(acc.gt(40.0));

@@ -4,7 +4,8 @@
 use anysl_core::{Color, Globals, ShadingFloat, Vec3};
 
 /// The globals `--global NAME=VALUE` may override.
-pub const GLOBAL_NAMES: [&str; 15] = ["P", "N", "Ng", "I", "E", "s", "t", "u", "v", "du", "dv", "dPdu", "dPdv", "Cs", "Os"];
+pub const GLOBAL_NAMES: [&str; 15] =
+    ["P", "N", "Ng", "I", "E", "s", "t", "u", "v", "du", "dv", "dPdu", "dPdv", "Cs", "Os"];
 
 /// True for the float (not triple) globals among [`GLOBAL_NAMES`].
 #[must_use]

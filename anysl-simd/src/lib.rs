@@ -423,11 +423,7 @@ macro_rules! simd_width {
             const LANES: usize = $lanes;
             #[inline(always)]
             fn splat(b: bool) -> Self {
-                Self(wide::$wf::from_bits(wide::$wu::splat(if b {
-                    u32::MAX
-                } else {
-                    0
-                })))
+                Self(wide::$wf::from_bits(wide::$wu::splat(if b { u32::MAX } else { 0 })))
             }
             #[inline(always)]
             fn any(self) -> bool {
@@ -536,12 +532,4 @@ macro_rules! simd_width {
 
 simd_width!(4, "f32x4", F32x4(f32x4), M32x4, U32x4(u32x4), i32x4, from_i32x4);
 simd_width!(8, "f32x8", F32x8(f32x8), M32x8, U32x8(u32x8), i32x8, from_i32x8);
-simd_width!(
-    16,
-    "f32x16",
-    F32x16(f32x16),
-    M32x16,
-    U32x16(u32x16),
-    i32x16,
-    from_i32x16
-);
+simd_width!(16, "f32x16", F32x16(f32x16), M32x16, U32x16(u32x16), i32x16, from_i32x16);

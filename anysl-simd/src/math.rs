@@ -265,15 +265,8 @@ pub(crate) fn floor_to_i32<W: Wide>(x: W) -> W::I {
 // Exponential and logarithm.
 
 /// 2^r = 1 + r·Q(r) on |r| <= 0.5 (tools/polyfit.py "exp2 Q", max rel. error 2.3e-9).
-const EXP2_Q: [f32; 7] = [
-    6.931471825e-1,
-    2.402265072e-1,
-    5.550410971e-2,
-    9.618056938e-3,
-    1.333350199e-3,
-    1.546146814e-4,
-    1.529734072e-5,
-];
+const EXP2_Q: [f32; 7] =
+    [6.931471825e-1, 2.402265072e-1, 5.550410971e-2, 9.618056938e-3, 1.333350199e-3, 1.546146814e-4, 1.529734072e-5];
 
 /// 2^(hi + lo) for a double-f32 exponent (|lo| <= ulp(hi)), with overflow to +inf,
 /// gradual underflow to the subnormals and 0, and NaN propagation from `hi`.
@@ -370,11 +363,7 @@ fn log2_dd<W: Wide>(x: W) -> (W, W) {
 #[inline(always)]
 fn log_specials<W: Wide>(x: W, v: W) -> W {
     let ok = k::<W>(0.0).lt(x) & x.lt(k(f32::INFINITY));
-    let special = W::select(
-        x.eq(k(0.0)),
-        k(f32::NEG_INFINITY),
-        W::select(x.eq(k(f32::INFINITY)), x, k(f32::NAN)),
-    );
+    let special = W::select(x.eq(k(0.0)), k(f32::NEG_INFINITY), W::select(x.eq(k(f32::INFINITY)), x, k(f32::NAN)));
     W::select(ok, v, special)
 }
 

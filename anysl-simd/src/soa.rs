@@ -53,11 +53,7 @@ pub fn unpack<F: Lanes>(v: F, dst: &mut [f32]) {
 #[inline]
 #[must_use]
 pub fn pack_vec3<F: Lanes>(src: &[Vec3<f32>]) -> Vec3<F> {
-    Vec3::new(
-        F::gather(src, |p| p.x),
-        F::gather(src, |p| p.y),
-        F::gather(src, |p| p.z),
-    )
+    Vec3::new(F::gather(src, |p| p.x), F::gather(src, |p| p.y), F::gather(src, |p| p.z))
 }
 
 /// Unpacks the first `min(dst.len(), LANES)` points into `dst`.
@@ -75,11 +71,7 @@ pub fn unpack_vec3<F: Lanes>(v: Vec3<F>, dst: &mut [Vec3<f32>]) {
 #[inline]
 #[must_use]
 pub fn pack_color<F: Lanes>(src: &[Color<f32>]) -> Color<F> {
-    Color::new(
-        F::gather(src, |c| c.r),
-        F::gather(src, |c| c.g),
-        F::gather(src, |c| c.b),
-    )
+    Color::new(F::gather(src, |c| c.r), F::gather(src, |c| c.g), F::gather(src, |c| c.b))
 }
 
 /// Unpacks the first `min(dst.len(), LANES)` colours into `dst`.

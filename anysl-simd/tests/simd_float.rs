@@ -160,11 +160,7 @@ impl Stats {
 /// infinities and the sign of zero.
 fn rel_err(got: f32, want: f32, zero_sign_matters: bool) -> f64 {
     if want.is_nan() || got.is_nan() {
-        return if want.is_nan() && got.is_nan() {
-            0.0
-        } else {
-            f64::INFINITY
-        };
+        return if want.is_nan() && got.is_nan() { 0.0 } else { f64::INFINITY };
     }
     if want.is_infinite() || got.is_infinite() {
         return if got == want { 0.0 } else { f64::INFINITY };
@@ -178,11 +174,7 @@ fn rel_err(got: f32, want: f32, zero_sign_matters: bool) -> f64 {
 
 fn ulp_diff(got: f32, want: f32) -> u32 {
     if got.is_nan() || want.is_nan() || got.is_sign_negative() != want.is_sign_negative() {
-        return if got == want || (got.is_nan() && want.is_nan()) {
-            0
-        } else {
-            u32::MAX
-        };
+        return if got == want || (got.is_nan() && want.is_nan()) { 0 } else { u32::MAX };
     }
     got.to_bits().abs_diff(want.to_bits())
 }
@@ -343,16 +335,10 @@ fn exact_binary<F: Lanes>() {
             assert_eq!(a.is_nan().lane(i), x.is_nan(), "is_nan {ctx}");
             let s = F::select(a.lt(b), a, b).lane(i) as f32;
             let want = if x < y { x } else { y };
-            assert!(
-                s.to_bits() == want.to_bits() || (s.is_nan() && want.is_nan()),
-                "select {ctx}"
-            );
+            assert!(s.to_bits() == want.to_bits() || (s.is_nan() && want.is_nan()), "select {ctx}");
             let s = <F as Blend<F>>::blend(a.le(b), b, a).lane(i) as f32;
             let want = if x <= y { y } else { x };
-            assert!(
-                s.to_bits() == want.to_bits() || (s.is_nan() && want.is_nan()),
-                "blend {ctx}"
-            );
+            assert!(s.to_bits() == want.to_bits() || (s.is_nan() && want.is_nan()), "blend {ctx}");
         }
     }
 }
@@ -462,9 +448,7 @@ where
 fn pack_roundtrip<F: Lanes>() {
     let n = F::LANES;
     for len in 1..=2 * n + 1 {
-        let pts: Vec<Vec3<f32>> = (0..len)
-            .map(|i| Vec3::new(i as f32, -(i as f32) * 0.5, 1e7 + i as f32))
-            .collect();
+        let pts: Vec<Vec3<f32>> = (0..len).map(|i| Vec3::new(i as f32, -(i as f32) * 0.5, 1e7 + i as f32)).collect();
         let cols: Vec<Color<f32>> = (0..len).map(|i| Color::new(0.1 * i as f32, 2.0, -(i as f32))).collect();
         let vals: Vec<f32> = (0..len).map(|i| i as f32 * 3.25 - 1.0).collect();
         let mut out_p = vec![Vec3::<f32>::splat(f32::NAN); len];

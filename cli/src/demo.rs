@@ -18,11 +18,7 @@ pub const GALLERY_SPP: u32 = 4;
 pub fn run(out: &Path, bench: &table1::Table1Opts, pb: &ProgressBar) -> Result<(), String> {
     std::fs::create_dir_all(out).map_err(|e| format!("cannot create {}: {e}", out.display()))?;
     let scene = build_scene(SceneName::Gallery, None, &[], GALLERY_SIZE)?;
-    let opts = RenderOptions {
-        spp: GALLERY_SPP,
-        progress: pb.is_hidden(),
-        ..RenderOptions::default()
-    };
+    let opts = RenderOptions { spp: GALLERY_SPP, progress: pb.is_hidden(), ..RenderOptions::default() };
     println!(
         "gallery: ten Table-1 shaders, phong bunny, checker ground, {}×{} pixels, {GALLERY_SPP} spp, shadows",
         scene.camera.width(),
@@ -56,10 +52,7 @@ pub fn run(out: &Path, bench: &table1::Table1Opts, pb: &ProgressBar) -> Result<(
         }
     }
     println!();
-    println!(
-        "Table 1 (small run: {0}×{0}, {1} run, {2} thread):",
-        bench.size, bench.runs, bench.threads
-    );
+    println!("Table 1 (small run: {0}×{0}, {1} run, {2} thread):", bench.size, bench.runs, bench.threads);
     let rows = table1::run(bench, pb)?;
     pb.finish_and_clear();
     table1::report(&rows, bench);

@@ -79,7 +79,14 @@ fn store_out<F: ShadingFloat>(out: &mut ShadeOut<f32>, i: usize, ci: Color<F>, o
 
 /// Shades `set` with the interpreter in batches of `batch` points (`f32` for batch 1, chunks
 /// of `F32x8` otherwise).
-fn interp_points(prog: &Program, values: &[Const], lights: &[Light], set: &PointSet, batch: usize, out: &mut ShadeOut<f32>) {
+fn interp_points(
+    prog: &Program,
+    values: &[Const],
+    lights: &[Light],
+    set: &PointSet,
+    batch: usize,
+    out: &mut ShadeOut<f32>,
+) {
     let ci = prog.global_loc(Global::Ci);
     let oi = prog.global_loc(Global::Oi);
     if batch == 1 {
@@ -138,9 +145,8 @@ pub fn run(opts: &InterpOpts, progress: &indicatif::ProgressBar) -> Result<Vec<I
     let mut rows = Vec::new();
     for name in &names {
         let file = if name == "phong" { "plastic" } else { name.as_str() };
-        let surface = Surface::by_name(name).ok_or_else(|| {
-            format!("--shader {name}: unknown shader (choices: {})", Surface::NAMES.join(", "))
-        })?;
+        let surface = Surface::by_name(name)
+            .ok_or_else(|| format!("--shader {name}: unknown shader (choices: {})", Surface::NAMES.join(", ")))?;
         let prog = load_program(file)?;
         let values: Vec<Const> = prog.module.params.iter().map(|p| p.default.clone()).collect();
         let reference = shade_points_f64::<f64, Surface, Light>(&surface, &lights, &set);
@@ -183,7 +189,10 @@ pub fn run(opts: &InterpOpts, progress: &indicatif::ProgressBar) -> Result<Vec<I
 
 /// Prints the table.
 pub fn print_table(rows: &[InterpRow]) {
-    println!("{:<10} {:<11} {:>6} {:>14} {:>10} {:>12}", "shader", "backend", "batch", "points/s", "speedup", "max_abs_err");
+    println!(
+        "{:<10} {:<11} {:>6} {:>14} {:>10} {:>12}",
+        "shader", "backend", "batch", "points/s", "speedup", "max_abs_err"
+    );
     for r in rows {
         println!(
             "{:<10} {:<11} {:>6} {:>14.3e} {:>9.3}x {:>12.2e}",

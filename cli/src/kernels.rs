@@ -77,10 +77,7 @@ pub fn run(opts: &KernelOpts, progress: &indicatif::ProgressBar) -> Result<Vec<K
     let known: Vec<&str> = all.iter().map(|(n, _)| *n).chain(["native-f32x8"]).collect();
     for want in &opts.instantiations {
         if !known.contains(&want.as_str()) {
-            return Err(format!(
-                "unknown instantiation '{want}' (choices: {})",
-                known.join(", ")
-            ));
+            return Err(format!("unknown instantiation '{want}' (choices: {})", known.join(", ")));
         }
     }
     let wanted = |n: &str| n == "f32" || opts.instantiations.is_empty() || opts.instantiations.iter().any(|w| w == n);
@@ -92,11 +89,8 @@ pub fn run(opts: &KernelOpts, progress: &indicatif::ProgressBar) -> Result<Vec<K
             .ok_or_else(|| format!("unknown shader '{name}' (choices: {})", Surface::NAMES.join(", ")))?;
         let derivs = surface.meta().uses_derivatives;
         let reference = shade_points_f64::<f64, _, _>(&surface, &lights, &set);
-        let dual_reference = if derivs {
-            Some(shade_points_f64::<Dual<f64>, _, _>(&surface, &lights, &set))
-        } else {
-            None
-        };
+        let dual_reference =
+            if derivs { Some(shade_points_f64::<Dual<f64>, _, _>(&surface, &lights, &set)) } else { None };
         let mut f32_rate = None;
         let mut push = |inst: &str, rate: f64, out: &ShadeOut<f32>, rows: &mut Vec<KernelRow>| {
             let (refname, r) = match (&dual_reference, inst.starts_with("dual")) {
@@ -178,11 +172,7 @@ pub fn summary(rows: &[KernelRow]) -> Vec<(String, f64, f64)> {
     names
         .into_iter()
         .map(|inst| {
-            let sp: Vec<f64> = rows
-                .iter()
-                .filter(|r| r.instantiation == inst)
-                .map(|r| r.speedup)
-                .collect();
+            let sp: Vec<f64> = rows.iter().filter(|r| r.instantiation == inst).map(|r| r.speedup).collect();
             let am = sp.iter().sum::<f64>() / sp.len() as f64;
             let gm = (sp.iter().map(|s| s.ln()).sum::<f64>() / sp.len() as f64).exp();
             (inst, am, gm)

@@ -1,9 +1,9 @@
 //! The `anysl` command-line tool.
 
 mod demo;
+mod interp_bench;
 #[cfg(feature = "jit")]
 mod jit;
-mod interp_bench;
 mod kernels;
 mod native;
 mod render;
@@ -18,11 +18,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 #[derive(Parser)]
-#[command(
-    name = "anysl",
-    version,
-    about = "One shader, any renderer: type-replacement shading"
-)]
+#[command(name = "anysl", version, about = "One shader, any renderer: type-replacement shading")]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -199,10 +195,7 @@ fn bench_kernels(opts: kernels::KernelOpts, json: Option<PathBuf>) -> Result<(),
     pb.finish_and_clear();
     kernels::print_table(&rows);
     println!();
-    println!(
-        "mean speedup over f32 (arithmetic / geometric), {} points, median of {} runs:",
-        opts.points, opts.runs
-    );
+    println!("mean speedup over f32 (arithmetic / geometric), {} points, median of {} runs:", opts.points, opts.runs);
     for (inst, am, gm) in kernels::summary(&rows) {
         println!("  {inst:<13} {am:>6.2}x / {gm:>6.2}x");
     }
@@ -265,7 +258,9 @@ fn main() -> ExitCode {
             Ok(code) => return ExitCode::from(code),
             Err(e) => Err(e),
         },
-        Command::Report { out, quick } => report::run(&report::ReportOpts { out, quick }).map(|p| println!("report written to {}", p.display())),
+        Command::Report { out, quick } => {
+            report::run(&report::ReportOpts { out, quick }).map(|p| println!("report written to {}", p.display()))
+        }
         #[cfg(feature = "jit")]
         Command::Jit { cmd: JitCommand::Check { files, points, verbose } } => {
             if jit::check(&files, points.max(16), verbose) {
@@ -277,7 +272,8 @@ fn main() -> ExitCode {
         Command::Bench { which } => match which {
             #[cfg(feature = "jit")]
             BenchCommand::Jit { json, points, runs, compiles, shaders } => {
-                let opts = jit::JitBenchOpts { points: points.max(16), runs: runs.max(1), compiles: compiles.max(1), shaders };
+                let opts =
+                    jit::JitBenchOpts { points: points.max(16), runs: runs.max(1), compiles: compiles.max(1), shaders };
                 jit::bench(&opts).and_then(|rows| {
                     jit::print_table(&rows);
                     match json {
@@ -291,41 +287,14 @@ fn main() -> ExitCode {
                     }
                 })
             }
-            BenchCommand::Kernels {
-                json,
-                points,
-                runs,
-                shaders,
-                instantiations,
-            } => bench_kernels(
-                kernels::KernelOpts {
-                    points,
-                    runs,
-                    shaders,
-                    instantiations,
-                },
+            BenchCommand::Kernels { json, points, runs, shaders, instantiations } => {
+                bench_kernels(kernels::KernelOpts { points, runs, shaders, instantiations }, json)
+            }
+            BenchCommand::Table1 { threads, json, size, runs } => bench_table1(
+                &table1::Table1Opts { size, runs: runs as usize, threads: threads.map_or(0, |t| t as usize) },
                 json,
             ),
-            BenchCommand::Table1 {
-                threads,
-                json,
-                size,
-                runs,
-            } => bench_table1(
-                &table1::Table1Opts {
-                    size,
-                    runs: runs as usize,
-                    threads: threads.map_or(0, |t| t as usize),
-                },
-                json,
-            ),
-            BenchCommand::Workload {
-                threads,
-                json,
-                runs,
-                shaders,
-                systems,
-            } => bench_workload(
+            BenchCommand::Workload { threads, json, runs, shaders, systems } => bench_workload(
                 &workload::WorkloadOpts {
                     threads: if threads.is_empty() {
                         vec![1, 2]
@@ -338,19 +307,9 @@ fn main() -> ExitCode {
                 },
                 json,
             ),
-            BenchCommand::Interp {
-                json,
-                points,
-                runs,
-                shaders,
-            } => bench_interp(
-                &interp_bench::InterpOpts {
-                    points,
-                    runs: runs as usize,
-                    shaders,
-                },
-                json,
-            ),
+            BenchCommand::Interp { json, points, runs, shaders } => {
+                bench_interp(&interp_bench::InterpOpts { points, runs: runs as usize, shaders }, json)
+            }
         },
     };
     match result {
@@ -364,13 +323,5 @@ fn main() -> ExitCode {
 
 fn demo(out: &std::path::Path) -> Result<(), String> {
     let pb = progress_bar(std::io::IsTerminal::is_terminal(&std::io::stderr()));
-    demo::run(
-        out,
-        &table1::Table1Opts {
-            size: 256,
-            runs: 1,
-            threads: 1,
-        },
-        &pb,
-    )
+    demo::run(out, &table1::Table1Opts { size: 256, runs: 1, threads: 1 }, &pb)
 }

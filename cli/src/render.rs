@@ -133,20 +133,15 @@ pub fn apply_params<S: Shader>(surfaces: &mut [S], params: &[String]) -> Result<
                     info.ty.keyword()
                 )
             })?;
-            surface
-                .set_param(name, &value)
-                .map_err(|e| format!("--param {name}={text}: {e}"))?;
+            surface.set_param(name, &value).map_err(|e| format!("--param {name}={text}: {e}"))?;
         }
         if !found {
             let listing: Vec<String> = unique_shaders(surfaces)
                 .iter()
                 .map(|s| {
                     let meta = s.meta();
-                    let params: Vec<String> = meta
-                        .params
-                        .iter()
-                        .map(|p| format!("{} {} = {}", p.ty.keyword(), p.name, p.default))
-                        .collect();
+                    let params: Vec<String> =
+                        meta.params.iter().map(|p| format!("{} {} = {}", p.ty.keyword(), p.name, p.default)).collect();
                     format!("  {}: {}", meta.name, params.join(", "))
                 })
                 .collect();
@@ -186,12 +181,8 @@ pub fn build_scene(
     size: u32,
 ) -> Result<Scene<Surface, Light>, String> {
     let by_name = |name: &str| {
-        Surface::by_name(name).ok_or_else(|| {
-            format!(
-                "--shader {name}: unknown shader (choices: {})",
-                shader_choices().join(", ")
-            )
-        })
+        Surface::by_name(name)
+            .ok_or_else(|| format!("--shader {name}: unknown shader (choices: {})", shader_choices().join(", ")))
     };
     let mut surfaces = match (scene, shader) {
         (SceneName::Gallery, None) => gallery_surfaces(),
@@ -285,7 +276,13 @@ fn load_module(file: &std::path::Path) -> Result<anysl_rsl::ir::Module, String> 
     anysl_rsl::compile_file(file, &copts).map(|c| c.module).map_err(|e| e.to_string())
 }
 
-fn render_backend(backend: Backend, shader: &str, args: &RenderArgs, lanes: usize, opts: &RenderOptions) -> Result<Image, String> {
+fn render_backend(
+    backend: Backend,
+    shader: &str,
+    args: &RenderArgs,
+    lanes: usize,
+    opts: &RenderOptions,
+) -> Result<Image, String> {
     let file = sl_file(shader);
     match backend {
         Backend::Interp => {
@@ -341,10 +338,7 @@ pub fn render_with<S: SurfaceShader>(
 
 /// `anysl render`.
 pub fn run(args: &RenderArgs) -> Result<(), String> {
-    let lanes: usize = args
-        .lanes
-        .parse()
-        .map_err(|_| format!("--lanes {}: expected 4, 8 or 16", args.lanes))?;
+    let lanes: usize = args.lanes.parse().map_err(|_| format!("--lanes {}: expected 4, 8 or 16", args.lanes))?;
     let is_sl = args.shader.as_deref().is_some_and(|s| s.ends_with(".sl"));
     let default_backend = if is_sl && cfg!(feature = "jit") {
         Backend::Jit
@@ -385,10 +379,7 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         (Some(s), true) => std::path::Path::new(s).file_stem().map_or(stem, |x| x.to_string_lossy().to_string()),
         _ => stem,
     };
-    let output = args
-        .output
-        .clone()
-        .unwrap_or_else(|| PathBuf::from(format!("{stem}.png")));
+    let output = args.output.clone().unwrap_or_else(|| PathBuf::from(format!("{stem}.png")));
     let start = Instant::now();
     let image = match (backend, args.shader.as_deref()) {
         (Backend::Aot, _) => {

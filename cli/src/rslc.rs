@@ -209,7 +209,12 @@ pub fn run(cmd: &RslcCommand) -> Result<u8, String> {
                         if !c.warnings.items.is_empty() {
                             eprint!("{}", c.warnings.render(&c.sources));
                         }
-                        println!("{}: ok ({} `{}`)", f.display(), format!("{:?}", c.module.kind).to_lowercase(), c.module.name);
+                        println!(
+                            "{}: ok ({} `{}`)",
+                            f.display(),
+                            format!("{:?}", c.module.kind).to_lowercase(),
+                            c.module.name
+                        );
                     }
                     Err(e) => {
                         failed += 1;
@@ -227,7 +232,10 @@ pub fn run(cmd: &RslcCommand) -> Result<u8, String> {
             let c = compile(file, sl)?;
             let mut m = c.module;
             let report = optimize(&mut m, &PassOptions::default());
-            println!("{}", serde_json::to_string_pretty(&info_json(&m, report.uses_derivatives)).map_err(|e| e.to_string())?);
+            println!(
+                "{}",
+                serde_json::to_string_pretty(&info_json(&m, report.uses_derivatives)).map_err(|e| e.to_string())?
+            );
             Ok(0)
         }
         RslcCommand::Ir { file, set, no_opt, sl } => {
@@ -285,9 +293,9 @@ fn parse_globals(globals: &[String]) -> Result<Vec<GlobalSet>, String> {
             if !GLOBAL_NAMES.contains(&name) {
                 return Err(format!("--global {name}: unknown global (choices: {})", GLOBAL_NAMES.join(", ")));
             }
-            let vals = parse_triple(text).filter(|v| v.len() <= 3).ok_or_else(|| {
-                format!("--global {name}={text}: expected a number or a comma-separated triple")
-            })?;
+            let vals = parse_triple(text)
+                .filter(|v| v.len() <= 3)
+                .ok_or_else(|| format!("--global {name}={text}: expected a number or a comma-separated triple"))?;
             let float = is_float_global(name);
             if (float && vals.len() != 1) || (!float && vals.len() != 1 && vals.len() != 3) {
                 return Err(format!("--global {name}={text}: {name} is a {}", if float { "float" } else { "triple" }));
@@ -396,11 +404,15 @@ pub fn eval(
             for j in 0..h {
                 for i in 0..w {
                     let o = if s.meta().uses_derivatives {
-                        let mut ctx = PointContext::new(anysl_rsl::eval::grid_globals::<Dual<f32>, _>(i, j, w, h, &sets), &lights);
+                        let mut ctx = PointContext::new(
+                            anysl_rsl::eval::grid_globals::<Dual<f32>, _>(i, j, w, h, &sets),
+                            &lights,
+                        );
                         let o = s.shade(&mut ctx, &mut Exec::new());
                         (o.Ci.lane(0), o.Oi.lane(0))
                     } else {
-                        let mut ctx = PointContext::new(anysl_rsl::eval::grid_globals::<f32, _>(i, j, w, h, &sets), &lights);
+                        let mut ctx =
+                            PointContext::new(anysl_rsl::eval::grid_globals::<f32, _>(i, j, w, h, &sets), &lights);
                         let o = s.shade(&mut ctx, &mut Exec::new());
                         (o.Ci.lane(0), o.Oi.lane(0))
                     };

@@ -88,10 +88,7 @@ impl Native {
             _ => return None,
         };
         let color = |c: [wide::f32x8; 3]| Color::new(F32x8(c[0]), F32x8(c[1]), F32x8(c[2]));
-        Some(SurfaceOutput {
-            Ci: color(ci),
-            Oi: color(oi),
-        })
+        Some(SurfaceOutput { Ci: color(ci), Oi: color(oi) })
     }
 }
 
@@ -117,17 +114,9 @@ fn measure(runs: usize, mut render: impl FnMut() -> (Image, PacketStats)) -> (Im
 pub fn run(opts: &Table1Opts, pb: &ProgressBar) -> Result<Vec<Table1Row>, String> {
     let lights = table1_lights();
     let (points, ambient) = native_lights(&lights).ok_or("the Table-1 lights are not all point and ambient lights")?;
-    let native = Native {
-        lights: points,
-        ambient,
-    };
+    let native = Native { lights: points, ambient };
     let kernel = |s: &Surface, g: &Globals<F32x8>| native.shade(s, g);
-    let ropts = RenderOptions {
-        threads: opts.threads,
-        shadows: false,
-        derivatives: false,
-        ..RenderOptions::default()
-    };
+    let ropts = RenderOptions { threads: opts.threads, shadows: false, derivatives: false, ..RenderOptions::default() };
     let mut rows = Vec::new();
     pb.set_length((Surface::NAMES.len() * (4 * opts.runs.max(1) + 1) + 2 * opts.runs.max(1)) as u64);
     for name in Surface::NAMES {
@@ -156,10 +145,7 @@ pub fn run(opts: &Table1Opts, pb: &ProgressBar) -> Result<Vec<Table1Row>, String
                         &scene,
                         &ropts,
                         8,
-                        KernelShading {
-                            kernel: &kernel,
-                            fallback: PlainShading,
-                        },
+                        KernelShading { kernel: &kernel, fallback: PlainShading },
                     )
                 }),
                 _ => continue,
@@ -192,11 +178,7 @@ pub fn print_table(rows: &[Table1Row]) {
         "shader", "variant", "frames/s", "shading ms", "shade spd", "frame spd", "PSNR dB", "max err", ""
     );
     for r in rows {
-        let psnr = if r.psnr_db.is_finite() {
-            format!("{:.1}", r.psnr_db)
-        } else {
-            "inf".into()
-        };
+        let psnr = if r.psnr_db.is_finite() { format!("{:.1}", r.psnr_db) } else { "inf".into() };
         println!(
             "{:<9} {:<13} {:>9.2} {:>11.2} {:>9.2}x {:>8.2}x {:>9} {:>8.1e}",
             r.shader, r.variant, r.fps, r.shading_ms, r.shading_speedup, r.frame_speedup, psnr, r.max_abs_err
@@ -229,9 +211,7 @@ pub fn generic_vs_native(rows: &[Table1Row]) -> Vec<(String, f64)> {
     rows.iter()
         .filter(|r| r.variant == "native-f32x8")
         .filter_map(|native| {
-            let generic = rows
-                .iter()
-                .find(|r| r.shader == native.shader && r.variant == "f32x8")?;
+            let generic = rows.iter().find(|r| r.shader == native.shader && r.variant == "f32x8")?;
             Some((native.shader.clone(), generic.shading_ms / native.shading_ms.max(1e-12)))
         })
         .collect()
@@ -244,23 +224,12 @@ pub fn report(rows: &[Table1Row], opts: &Table1Opts) {
     println!(
         "mean speedup over f32 shading of the same packets ({0}×{0}, no shadows, {1} thread(s), median of {2} run(s)):",
         opts.size,
-        if opts.threads == 0 {
-            "all".to_string()
-        } else {
-            opts.threads.to_string()
-        },
+        if opts.threads == 0 { "all".to_string() } else { opts.threads.to_string() },
         opts.runs.max(1)
     );
-    println!(
-        "  {:<13} {:>10} {:>10} {:>12}",
-        "variant", "shading am", "shading gm", "frame am"
-    );
+    println!("  {:<13} {:>10} {:>10} {:>12}", "variant", "shading am", "shading gm", "frame am");
     for (v, am, gm, frame, n) in averages(rows) {
-        let note = if n == Surface::NAMES.len() {
-            String::new()
-        } else {
-            format!("  ({n} shaders)")
-        };
+        let note = if n == Surface::NAMES.len() { String::new() } else { format!("  ({n} shaders)") };
         println!("  {v:<13} {am:>9.2}x {gm:>9.2}x {frame:>11.2}x{note}");
     }
     let ratios = generic_vs_native(rows);

@@ -110,10 +110,7 @@ impl<F: ShadingFloat> System for Generic<F> {
 }
 
 fn generic<F: ShadingFloat>(name: &'static str) -> Box<dyn System> {
-    Box::new(Generic::<F> {
-        name,
-        _f: core::marker::PhantomData,
-    })
+    Box::new(Generic::<F> { name, _f: core::marker::PhantomData })
 }
 
 /// The systems measured, in table order.
@@ -142,10 +139,7 @@ pub fn run(opts: &WorkloadOpts, progress: &ProgressBar) -> Result<Vec<WorkloadRo
             .iter()
             .map(|n| {
                 WorkloadShader::by_name(n).ok_or_else(|| {
-                    format!(
-                        "unknown workload shader '{n}' (choices: {})",
-                        WorkloadShader::NAMES.join(", ")
-                    )
+                    format!("unknown workload shader '{n}' (choices: {})", WorkloadShader::NAMES.join(", "))
                 })
             })
             .collect::<Result<_, _>>()?
@@ -163,10 +157,8 @@ pub fn run(opts: &WorkloadOpts, progress: &ProgressBar) -> Result<Vec<WorkloadRo
     progress.set_message("scene setup");
     let scene = WorkloadScene::new();
     let lights = workload::lights();
-    let references: Vec<Vec<f32>> = shaders
-        .iter()
-        .map(|s| reference::load_reference(s.name()))
-        .collect::<Result<_, _>>()?;
+    let references: Vec<Vec<f32>> =
+        shaders.iter().map(|s| reference::load_reference(s.name())).collect::<Result<_, _>>()?;
     let n = scene.padded_len();
     progress.set_length((opts.threads.len() * shaders.len() * systems.len() * (opts.runs + 1)) as u64);
 
@@ -182,17 +174,11 @@ pub fn run(opts: &WorkloadOpts, progress: &ProgressBar) -> Result<Vec<WorkloadRo
         } else {
             None
         };
-        let env = CallEnv {
-            scene: &scene,
-            lights: &lights,
-            pool: pool.as_ref(),
-        };
+        let env = CallEnv { scene: &scene, lights: &lights, pool: pool.as_ref() };
         for (shader, reference) in shaders.iter().zip(&references) {
             progress.set_message(format!("{} × {threads} thread(s)", shader.name()));
-            let mut outs: Vec<[Vec<f32>; 3]> = systems
-                .iter()
-                .map(|_| [vec![0.0; n], vec![0.0; n], vec![0.0; n]])
-                .collect();
+            let mut outs: Vec<[Vec<f32>; 3]> =
+                systems.iter().map(|_| [vec![0.0; n], vec![0.0; n], vec![0.0; n]]).collect();
             let mut first = vec![0.0; systems.len()];
             let mut times = vec![Vec::with_capacity(opts.runs); systems.len()];
             // The first call of each system: first_call_ms, and the warm-up.
@@ -211,11 +197,7 @@ pub fn run(opts: &WorkloadOpts, progress: &ProgressBar) -> Result<Vec<WorkloadRo
                 }
             }
             for (k, sys) in systems.iter().enumerate() {
-                let secs = if times[k].is_empty() {
-                    first[k]
-                } else {
-                    median(std::mem::take(&mut times[k]))
-                };
+                let secs = if times[k].is_empty() { first[k] } else { median(std::mem::take(&mut times[k])) };
                 let err = reference::image_error(&scene.to_image(&outs[k]), reference);
                 rows.push(WorkloadRow {
                     system: sys.name().to_string(),

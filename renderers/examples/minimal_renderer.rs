@@ -114,10 +114,7 @@ fn main() {
     let (x, y) = (30.5f32, 40.5f32);
     let c = shade(&shader, &lights, Dual::seed_x(x), Dual::seed_y(y));
     let fd = (shade::<f32>(&shader, &lights, x + 0.25, y).g - shade::<f32>(&shader, &lights, x - 0.25, y).g) / 0.5;
-    println!(
-        "pixel ({x}, {y}): Ci.g = {:.4}, ∂Ci.g/∂x = {:.5} (finite difference {fd:.5})",
-        c.g.val, c.g.ddx
-    );
+    println!("pixel ({x}, {y}): Ci.g = {:.4}, ∂Ci.g/∂x = {:.5} (finite difference {fd:.5})", c.g.val, c.g.ddx);
     let (_, g) = hit_sphere(Dual::seed_x(x), Dual::seed_y(y));
     println!("  ∂s/∂x = {:.5}, ∂t/∂y = {:.5}", g.s.ddx, g.t.ddy);
 
@@ -125,22 +122,13 @@ fn main() {
     let (x0, y0) = (24.0f32, 24.0f32);
     let tile = |lo: f32| Interval::new(lo, lo + 8.0);
     let bound = shade(&shader, &lights, tile(x0), tile(y0));
-    println!(
-        "tile [{x0}, {}]×[{y0}, {}]: Ci.g ∈ [{:.4}, {:.4}]",
-        x0 + 8.0,
-        y0 + 8.0,
-        bound.g.lo(),
-        bound.g.hi()
-    );
+    println!("tile [{x0}, {}]×[{y0}, {}]: Ci.g ∈ [{:.4}, {:.4}]", x0 + 8.0, y0 + 8.0, bound.g.lo(), bound.g.hi());
     let mut samples = 0;
     for j in 0..=16 {
         for i in 0..=16 {
             let (px, py) = (x0 + i as f32 * 0.5, y0 + j as f32 * 0.5);
             let v = shade::<f32>(&shader, &lights, px, py).g;
-            assert!(
-                bound.g.lo() <= v && v <= bound.g.hi(),
-                "sample ({px}, {py}) = {v} outside the bound"
-            );
+            assert!(bound.g.lo() <= v && v <= bound.g.hi(), "sample ({px}, {py}) = {v} outside the bound");
             samples += 1;
         }
     }

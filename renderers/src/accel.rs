@@ -74,24 +74,12 @@ impl Accel {
         let tris: Vec<PackedTri> = triangles
             .iter()
             .enumerate()
-            .map(|(i, [a, b, c])| PackedTri {
-                v0: *a,
-                e1: *b - *a,
-                e2: *c - *a,
-                prim: i as u32,
-            })
+            .map(|(i, [a, b, c])| PackedTri { v0: *a, e1: *b - *a, e2: *c - *a, prim: i as u32 })
             .collect();
         if triangles.is_empty() {
-            return Self {
-                bvh: CwBvh::default(),
-                bvh_tris: Vec::new(),
-                tris,
-            };
+            return Self { bvh: CwBvh::default(), bvh_tris: Vec::new(), tris };
         }
-        let obvhs_tris: Vec<Triangle> = triangles
-            .iter()
-            .map(|[a, b, c]| Triangle { v0: *a, v1: *b, v2: *c })
-            .collect();
+        let obvhs_tris: Vec<Triangle> = triangles.iter().map(|[a, b, c]| Triangle { v0: *a, v1: *b, v2: *c }).collect();
         let bvh = build_cwbvh_from_tris(&obvhs_tris, BvhBuildParams::medium_build(), &mut Duration::default());
         let bvh_tris = bvh.primitive_indices.iter().map(|&i| tris[i as usize]).collect();
         Self { bvh, bvh_tris, tris }
@@ -118,22 +106,12 @@ impl Accel {
         }
         let ray = Ray::new(origin, dir, tmin, tmax);
         let mut rh = RayHit::none();
-        let mut best = Hit {
-            t: tmax,
-            prim: u32::MAX,
-            b1: 0.0,
-            b2: 0.0,
-        };
+        let mut best = Hit { t: tmax, prim: u32::MAX, b1: 0.0, b2: 0.0 };
         let found = self.bvh.ray_traverse(ray, &mut rh, |r, slot| {
             let tri = &self.bvh_tris[slot];
             match tri.intersect(r.origin, r.direction, r.tmin, r.tmax) {
                 Some((t, b1, b2)) => {
-                    best = Hit {
-                        t,
-                        prim: tri.prim,
-                        b1,
-                        b2,
-                    };
+                    best = Hit { t, prim: tri.prim, b1, b2 };
                     t
                 }
                 None => f32::INFINITY,
@@ -151,9 +129,7 @@ impl Accel {
         }
         let ray = Ray::new(origin, dir, tmin, tmax);
         !self.bvh.ray_traverse_miss(ray, |r, slot| {
-            self.bvh_tris[slot]
-                .intersect(r.origin, r.direction, r.tmin, r.tmax)
-                .map_or(f32::INFINITY, |h| h.0)
+            self.bvh_tris[slot].intersect(r.origin, r.direction, r.tmin, r.tmax).map_or(f32::INFINITY, |h| h.0)
         })
     }
 
@@ -164,12 +140,7 @@ impl Accel {
         let mut tmax = tmax;
         for tri in &self.tris {
             if let Some((t, b1, b2)) = tri.intersect(origin, dir, tmin, tmax) {
-                best = Some(Hit {
-                    t,
-                    prim: tri.prim,
-                    b1,
-                    b2,
-                });
+                best = Some(Hit { t, prim: tri.prim, b1, b2 });
                 tmax = t;
             }
         }
@@ -179,8 +150,6 @@ impl Accel {
     /// Reference for [`Accel::occluded`].
     #[must_use]
     pub fn occluded_brute_force(&self, origin: Vec3A, dir: Vec3A, tmin: f32, tmax: f32) -> bool {
-        self.tris
-            .iter()
-            .any(|tri| tri.intersect(origin, dir, tmin, tmax).is_some())
+        self.tris.iter().any(|tri| tri.intersect(origin, dir, tmin, tmax).is_some())
     }
 }

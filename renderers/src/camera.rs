@@ -27,13 +27,8 @@ impl Camera {
     #[must_use]
     pub fn new(position: Vec3A, look_at: Vec3A, up: Vec3A, vfov: f32, width: u32, height: u32) -> Self {
         assert!(width > 0 && height > 0, "empty image {width}×{height}");
-        let forward = (look_at - position)
-            .try_normalize()
-            .expect("camera looks at its own position");
-        let right = forward
-            .cross(up)
-            .try_normalize()
-            .expect("camera up is parallel to the view direction");
+        let forward = (look_at - position).try_normalize().expect("camera looks at its own position");
+        let right = forward.cross(up).try_normalize().expect("camera up is parallel to the view direction");
         let up_unit = right.cross(forward);
         let tan_half = (vfov * 0.5).tan();
         let aspect = width as f32 / height as f32;
@@ -123,14 +118,7 @@ mod tests {
     #[test]
     fn workload_camera_matches_the_spec() {
         // shared/bench/shading_workload.md §1: sx = ((col + 0.5)·2/512 − 1)·0.375, …
-        let cam = Camera::new(
-            Vec3A::new(0.0, 0.0, 3.0),
-            Vec3A::ZERO,
-            Vec3A::Y,
-            2.0 * 0.375f32.atan(),
-            512,
-            512,
-        );
+        let cam = Camera::new(Vec3A::new(0.0, 0.0, 3.0), Vec3A::ZERO, Vec3A::Y, 2.0 * 0.375f32.atan(), 512, 512);
         for (col, row) in [(0u32, 0u32), (100, 300), (511, 511)] {
             let sx = ((col as f32 + 0.5) * (2.0 / 512.0) - 1.0) * 0.375;
             let sy = (1.0 - (row as f32 + 0.5) * (2.0 / 512.0)) * 0.375;

@@ -18,11 +18,7 @@ impl Image {
     /// A black image.
     #[must_use]
     pub fn new(width: u32, height: u32) -> Self {
-        Self {
-            width,
-            height,
-            data: vec![[0.0; 3]; width as usize * height as usize],
-        }
+        Self { width, height, data: vec![[0.0; 3]; width as usize * height as usize] }
     }
 
     /// The pixel in column `x`, row `y` (row 0 at the top).
@@ -32,12 +28,7 @@ impl Image {
     #[inline]
     #[must_use]
     pub fn pixel(&self, x: u32, y: u32) -> [f32; 3] {
-        assert!(
-            x < self.width && y < self.height,
-            "pixel ({x}, {y}) outside {}×{}",
-            self.width,
-            self.height
-        );
+        assert!(x < self.width && y < self.height, "pixel ({x}, {y}) outside {}×{}", self.width, self.height);
         self.data[y as usize * self.width as usize + x as usize]
     }
 
@@ -53,14 +44,8 @@ impl Image {
     /// When the file cannot be written; the message names the path.
     pub fn save_png(&self, path: impl AsRef<Path>) -> Result<(), String> {
         let path = path.as_ref();
-        image::save_buffer(
-            path,
-            &self.to_srgb8(),
-            self.width,
-            self.height,
-            image::ExtendedColorType::Rgb8,
-        )
-        .map_err(|e| format!("{}: cannot write PNG: {e}", path.display()))
+        image::save_buffer(path, &self.to_srgb8(), self.width, self.height, image::ExtendedColorType::Rgb8)
+            .map_err(|e| format!("{}: cannot write PNG: {e}", path.display()))
     }
 
     /// Peak signal-to-noise ratio in dB against `other`, on linear values clamped to [0, 1]
@@ -141,11 +126,7 @@ fn clamp01(v: f32) -> f32 {
 #[inline]
 fn encode_srgb8(v: f32) -> u8 {
     let v = clamp01(v);
-    let s = if v <= 0.003_130_8 {
-        12.92 * v
-    } else {
-        1.055 * v.powf(1.0 / 2.4) - 0.055
-    };
+    let s = if v <= 0.003_130_8 { 12.92 * v } else { 1.055 * v.powf(1.0 / 2.4) - 0.055 };
     (s * 255.0 + 0.5) as u8
 }
 

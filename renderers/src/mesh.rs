@@ -54,16 +54,8 @@ impl Mesh {
     /// When `segments < 3` or `rings < 2`.
     #[must_use]
     pub fn uv_sphere(radius: f32, segments: u32, rings: u32) -> Self {
-        assert!(
-            segments >= 3 && rings >= 2,
-            "a UV sphere needs ≥ 3 segments and ≥ 2 rings"
-        );
-        let mut m = Mesh {
-            positions: Vec::new(),
-            normals: Vec::new(),
-            uvs: Vec::new(),
-            triangles: Vec::new(),
-        };
+        assert!(segments >= 3 && rings >= 2, "a UV sphere needs ≥ 3 segments and ≥ 2 rings");
+        let mut m = Mesh { positions: Vec::new(), normals: Vec::new(), uvs: Vec::new(), triangles: Vec::new() };
         // One seam column is duplicated so that s runs continuously from 0 to 1.
         for r in 0..=rings {
             let t = r as f32 / rings as f32;
@@ -100,19 +92,9 @@ impl Mesh {
     pub fn ground_quad(size: f32, tiles: f32) -> Self {
         let h = size * 0.5;
         Mesh {
-            positions: vec![
-                Vec3::new(-h, 0.0, -h),
-                Vec3::new(h, 0.0, -h),
-                Vec3::new(h, 0.0, h),
-                Vec3::new(-h, 0.0, h),
-            ],
+            positions: vec![Vec3::new(-h, 0.0, -h), Vec3::new(h, 0.0, -h), Vec3::new(h, 0.0, h), Vec3::new(-h, 0.0, h)],
             normals: vec![Vec3::Y; 4],
-            uvs: vec![
-                Vec2::new(0.0, 0.0),
-                Vec2::new(tiles, 0.0),
-                Vec2::new(tiles, tiles),
-                Vec2::new(0.0, tiles),
-            ],
+            uvs: vec![Vec2::new(0.0, 0.0), Vec2::new(tiles, 0.0), Vec2::new(tiles, tiles), Vec2::new(0.0, tiles)],
             triangles: vec![[0, 2, 1], [0, 3, 2]],
         }
     }
@@ -129,11 +111,7 @@ impl Mesh {
     /// A malformed number, an index out of range or a face with fewer than three vertices;
     /// the error names the file and line.
     pub fn from_obj(text: &str, file: &str) -> Result<Self, ObjError> {
-        let err = |line: usize, message: String| ObjError {
-            file: file.to_string(),
-            line,
-            message,
-        };
+        let err = |line: usize, message: String| ObjError { file: file.to_string(), line, message };
         let mut pos: Vec<Vec3> = Vec::new();
         let mut nrm: Vec<Vec3> = Vec::new();
         let mut tex: Vec<Vec2> = Vec::new();
@@ -152,10 +130,7 @@ impl Mesh {
             let mut floats = |n_min: usize, n_max: usize| -> Result<Vec<f32>, ObjError> {
                 let vals: Vec<&str> = it.by_ref().collect();
                 if vals.len() < n_min || vals.len() > n_max {
-                    return Err(err(
-                        lineno,
-                        format!("'{tag}' needs {n_min} to {n_max} numbers, found {}", vals.len()),
-                    ));
+                    return Err(err(lineno, format!("'{tag}' needs {n_min} to {n_max} numbers, found {}", vals.len())));
                 }
                 vals.iter()
                     .map(|v| {
@@ -187,9 +162,8 @@ impl Mesh {
                             match s {
                                 None | Some("") => Ok(NONE),
                                 Some(s) => {
-                                    let i: i64 = s
-                                        .parse()
-                                        .map_err(|_| err(lineno, format!("'{s}' is not a {what} index")))?;
+                                    let i: i64 =
+                                        s.parse().map_err(|_| err(lineno, format!("'{s}' is not a {what} index")))?;
                                     let idx = if i > 0 { i - 1 } else { len as i64 + i };
                                     if i == 0 || idx < 0 || idx >= len as i64 {
                                         Err(err(lineno, format!("{what} index {i} out of range (have {len})")))
@@ -213,10 +187,7 @@ impl Mesh {
                         poly.push(id);
                     }
                     if poly.len() < 3 {
-                        return Err(err(
-                            lineno,
-                            format!("a face needs at least 3 vertices, found {}", poly.len()),
-                        ));
+                        return Err(err(lineno, format!("a face needs at least 3 vertices, found {}", poly.len())));
                     }
                     for k in 1..poly.len() - 1 {
                         triangles.push([poly[0], poly[k], poly[k + 1]]);
@@ -233,16 +204,8 @@ impl Mesh {
         let have_normals = keys.iter().all(|k| k.2 != NONE);
         let have_uvs = keys.iter().all(|k| k.1 != NONE);
         let mut mesh = Mesh {
-            normals: if have_normals {
-                keys.iter().map(|k| nrm[k.2 as usize]).collect()
-            } else {
-                Vec::new()
-            },
-            uvs: if have_uvs {
-                keys.iter().map(|k| tex[k.1 as usize]).collect()
-            } else {
-                Vec::new()
-            },
+            normals: if have_normals { keys.iter().map(|k| nrm[k.2 as usize]).collect() } else { Vec::new() },
+            uvs: if have_uvs { keys.iter().map(|k| tex[k.1 as usize]).collect() } else { Vec::new() },
             positions,
             triangles,
         };
@@ -268,10 +231,7 @@ impl Mesh {
                 acc[position_of[i as usize] as usize] += n;
             }
         }
-        self.normals = position_of
-            .iter()
-            .map(|&p| acc[p as usize].normalize_or(Vec3::Y))
-            .collect();
+        self.normals = position_of.iter().map(|&p| acc[p as usize].normalize_or(Vec3::Y)).collect();
     }
 
     /// `(s, t)` from the bounding box: the largest extent maps to s, the second to t.
@@ -282,20 +242,15 @@ impl Mesh {
         axes.sort_by(|&a, &b| ext[b].total_cmp(&ext[a]));
         let (a, b) = (axes[0], axes[1]);
         let inv = |k: usize| if ext[k] > 0.0 { 1.0 / ext[k] } else { 0.0 };
-        self.uvs = self
-            .positions
-            .iter()
-            .map(|p| Vec2::new((p[a] - lo[a]) * inv(a), (p[b] - lo[b]) * inv(b)))
-            .collect();
+        self.uvs = self.positions.iter().map(|p| Vec2::new((p[a] - lo[a]) * inv(a), (p[b] - lo[b]) * inv(b))).collect();
     }
 
     /// Axis-aligned bounds `(min, max)` of the positions.
     #[must_use]
     pub fn bounds(&self) -> (Vec3, Vec3) {
-        self.positions.iter().fold(
-            (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
-            |(lo, hi), p| (lo.min(*p), hi.max(*p)),
-        )
+        self.positions
+            .iter()
+            .fold((Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)), |(lo, hi), p| (lo.min(*p), hi.max(*p)))
     }
 }
 
@@ -316,10 +271,7 @@ mod tests {
     fn errors_name_file_and_line() {
         let e = Mesh::from_obj("v 0 0 0\nv 1 0 0\n\nf 1 2 5\n", "bad.obj").unwrap_err();
         assert_eq!((e.file.as_str(), e.line), ("bad.obj", 4));
-        assert!(
-            e.to_string().starts_with("bad.obj:4: vertex index 5 out of range"),
-            "{e}"
-        );
+        assert!(e.to_string().starts_with("bad.obj:4: vertex index 5 out of range"), "{e}");
         let e = Mesh::from_obj("v 0 zero 0\n", "n.obj").unwrap_err();
         assert_eq!(e.to_string(), "n.obj:1: 'zero' is not a finite number");
         let e = Mesh::from_obj("v 0 0 0\nv 1 0 0\nf 1 2\n", "f.obj").unwrap_err();

@@ -36,11 +36,7 @@ pub struct Sky {
 
 impl Default for Sky {
     fn default() -> Self {
-        Self {
-            horizon: [0.6, 0.6, 0.6],
-            zenith: [0.2, 0.3, 0.8],
-            visible_to_camera: false,
-        }
+        Self { horizon: [0.6, 0.6, 0.6], zenith: [0.2, 0.3, 0.8], visible_to_camera: false }
     }
 }
 
@@ -116,11 +112,7 @@ impl<S, L> Scene<S, L> {
                 .get(inst.mesh)
                 .ok_or_else(|| SceneError(format!("instance {k} uses mesh {} of {}", inst.mesh, meshes.len())))?;
             if inst.surface >= surfaces.len() {
-                return Err(SceneError(format!(
-                    "instance {k} uses surface {} of {}",
-                    inst.surface,
-                    surfaces.len()
-                )));
+                return Err(SceneError(format!("instance {k} uses surface {} of {}", inst.surface, surfaces.len())));
             }
             if mesh.normals.len() != mesh.positions.len() || mesh.uvs.len() != mesh.positions.len() {
                 return Err(SceneError(format!(
@@ -133,23 +125,14 @@ impl<S, L> Scene<S, L> {
             }
             let base = positions.len() as u32;
             let normal_matrix = inst.transform.inverse().transpose();
-            positions.extend(
-                mesh.positions
-                    .iter()
-                    .map(|p| Vec3A::from(inst.transform.transform_point3(*p))),
-            );
+            positions.extend(mesh.positions.iter().map(|p| Vec3A::from(inst.transform.transform_point3(*p))));
             normals.extend(
-                mesh.normals
-                    .iter()
-                    .map(|n| Vec3A::from(normal_matrix.transform_vector3(*n)).normalize_or_zero()),
+                mesh.normals.iter().map(|n| Vec3A::from(normal_matrix.transform_vector3(*n)).normalize_or_zero()),
             );
             uvs.extend_from_slice(&mesh.uvs);
             for tri in &mesh.triangles {
                 if tri.iter().any(|&i| i as usize >= mesh.positions.len()) {
-                    return Err(SceneError(format!(
-                        "mesh {}: triangle {tri:?} indexes past its vertices",
-                        inst.mesh
-                    )));
+                    return Err(SceneError(format!("mesh {}: triangle {tri:?} indexes past its vertices", inst.mesh)));
                 }
                 triangles.push(TriangleRef {
                     vertices: tri.map(|i| base + i),
@@ -158,23 +141,9 @@ impl<S, L> Scene<S, L> {
                 });
             }
         }
-        let world: Vec<[Vec3A; 3]> = triangles
-            .iter()
-            .map(|t| t.vertices.map(|i| positions[i as usize]))
-            .collect();
+        let world: Vec<[Vec3A; 3]> = triangles.iter().map(|t| t.vertices.map(|i| positions[i as usize])).collect();
         let accel = Accel::build(&world);
-        Ok(Self {
-            camera,
-            surfaces,
-            lights,
-            sky: Sky::default(),
-            instances,
-            positions,
-            normals,
-            uvs,
-            triangles,
-            accel,
-        })
+        Ok(Self { camera, surfaces, lights, sky: Sky::default(), instances, positions, normals, uvs, triangles, accel })
     }
 
     /// The instances.
@@ -192,9 +161,7 @@ impl<S, L> Scene<S, L> {
     /// The world-space vertices of triangle `prim`.
     #[must_use]
     pub fn triangle_vertices(&self, prim: u32) -> [Vec3A; 3] {
-        self.triangles[prim as usize]
-            .vertices
-            .map(|i| self.positions[i as usize])
+        self.triangles[prim as usize].vertices.map(|i| self.positions[i as usize])
     }
 
     /// The BVH (and brute-force reference) over the triangles.
@@ -249,10 +216,7 @@ impl<S, L> Scene<S, L> {
         let det = duv02.x * duv12.y - duv02.y * duv12.x;
         let (dpdu, dpdv) = if det.abs() > 1e-12 {
             let inv = 1.0 / det;
-            (
-                (dp02 * duv12.y - dp12 * duv02.y) * inv,
-                (dp12 * duv02.x - dp02 * duv12.x) * inv,
-            )
+            ((dp02 * duv12.y - dp12 * duv02.y) * inv, (dp12 * duv02.x - dp02 * duv12.x) * inv)
         } else {
             let a = ng.any_orthonormal_vector();
             (a, ng.cross(a))

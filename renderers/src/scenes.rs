@@ -26,20 +26,9 @@ pub fn bunny_mesh() -> Mesh {
 /// `RenderOptions { shadows: false, .. }` to match it exactly.
 #[must_use]
 pub fn table1<S, L>(surface: S, lights: Vec<L>, size: u32) -> Scene<S, L> {
-    let camera = Camera::new(
-        Vec3A::new(0.0, 0.0, 3.0),
-        Vec3A::ZERO,
-        Vec3A::Y,
-        2.0 * 0.375f32.atan(),
-        size,
-        size,
-    );
+    let camera = Camera::new(Vec3A::new(0.0, 0.0, 3.0), Vec3A::ZERO, Vec3A::Y, 2.0 * 0.375f32.atan(), size, size);
     let sphere = Mesh::uv_sphere(1.0, 64, 32);
-    let instances = vec![Instance {
-        mesh: 0,
-        surface: 0,
-        transform: Mat4::IDENTITY,
-    }];
+    let instances = vec![Instance { mesh: 0, surface: 0, transform: Mat4::IDENTITY }];
     Scene::new(camera, &[sphere], instances, vec![surface], lights).expect("the table-1 scene is well formed")
 }
 
@@ -54,20 +43,9 @@ pub fn table1<S, L>(surface: S, lights: Vec<L>, size: u32) -> Scene<S, L> {
 /// When fewer than 10 surfaces are given.
 #[must_use]
 pub fn gallery<S, L>(surfaces: Vec<S>, lights: Vec<L>, size: u32) -> Scene<S, L> {
-    assert!(
-        surfaces.len() >= 10,
-        "the gallery needs 10 surface shaders, got {}",
-        surfaces.len()
-    );
+    assert!(surfaces.len() >= 10, "the gallery needs 10 surface shaders, got {}", surfaces.len());
     let height = (size * 9 / 16).max(1);
-    let camera = Camera::new(
-        Vec3A::new(0.0, 2.4, 5.2),
-        Vec3A::new(0.0, 0.25, -0.3),
-        Vec3A::Y,
-        0.62,
-        size,
-        height,
-    );
+    let camera = Camera::new(Vec3A::new(0.0, 2.4, 5.2), Vec3A::new(0.0, 0.25, -0.3), Vec3A::Y, 0.62, size, height);
     let meshes = [Mesh::uv_sphere(1.0, 48, 24), bunny_mesh(), Mesh::ground_quad(1.0, 8.0)];
     let mut instances = Vec::with_capacity(12);
     for k in 0..10 {
@@ -92,10 +70,7 @@ pub fn gallery<S, L>(surfaces: Vec<S>, lights: Vec<L>, size: u32) -> Scene<S, L>
         transform: Mat4::from_scale(Vec3::new(8.0, 1.0, 8.0)),
     });
     let mut scene = Scene::new(camera, &meshes, instances, surfaces, lights).expect("the gallery scene is well formed");
-    scene.sky = Sky {
-        visible_to_camera: true,
-        ..Sky::default()
-    };
+    scene.sky = Sky { visible_to_camera: true, ..Sky::default() };
     scene
 }
 
@@ -108,18 +83,7 @@ pub fn bunny<S, L>(surface: S, lights: Vec<L>, size: u32) -> Scene<S, L> {
     let scale = 1.0 / (hi.y - lo.y);
     let centre = (lo + hi) * 0.5;
     let transform = Mat4::from_scale(Vec3::splat(scale)) * Mat4::from_translation(-centre);
-    let camera = Camera::new(
-        Vec3A::new(0.6, 0.35, 2.2),
-        Vec3A::new(0.0, -0.02, 0.0),
-        Vec3A::Y,
-        0.55,
-        size,
-        size,
-    );
-    let instances = vec![Instance {
-        mesh: 0,
-        surface: 0,
-        transform,
-    }];
+    let camera = Camera::new(Vec3A::new(0.6, 0.35, 2.2), Vec3A::new(0.0, -0.02, 0.0), Vec3A::Y, 0.55, size, size);
+    let instances = vec![Instance { mesh: 0, surface: 0, transform }];
     Scene::new(camera, &[mesh], instances, vec![surface], lights).expect("the bunny scene is well formed")
 }

@@ -126,11 +126,7 @@ fn field<F: ShadingFloat>(hits: &[SurfaceHit], src: &[usize; MAX_LANES], f: impl
 
 #[inline(always)]
 fn field3<F: ShadingFloat>(hits: &[SurfaceHit], src: &[usize; MAX_LANES], f: impl Fn(&SurfaceHit) -> Vec3A) -> Vec3<F> {
-    Vec3::new(
-        field(hits, src, |h| f(h).x),
-        field(hits, src, |h| f(h).y),
-        field(hits, src, |h| f(h).z),
-    )
+    Vec3::new(field(hits, src, |h| f(h).x), field(hits, src, |h| f(h).y), field(hits, src, |h| f(h).z))
 }
 
 /// The globals of the hits in `group` (structure of arrays), seeded with screen-space
@@ -151,11 +147,7 @@ pub fn gather_globals<F: ShadingFloat>(hits: &[SurfaceHit], group: u32, first: u
     let mut t = field::<F>(hits, &src, |h| h.t);
     if F::HAS_DERIVS {
         let seed3 = |v: Vec3<F>, dx: Vec3<F>, dy: Vec3<F>| {
-            Vec3::new(
-                v.x.with_derivs(dx.x, dy.x),
-                v.y.with_derivs(dx.y, dy.y),
-                v.z.with_derivs(dx.z, dy.z),
-            )
+            Vec3::new(v.x.with_derivs(dx.x, dy.x), v.y.with_derivs(dx.y, dy.y), v.z.with_derivs(dx.z, dy.z))
         };
         let dpdx = field3::<F>(hits, &src, |h| h.dpdx);
         let dpdy = field3::<F>(hits, &src, |h| h.dpdy);
@@ -220,11 +212,7 @@ where
 {
     debug_assert!(F::LANES <= MAX_LANES && lanes.hits.len() >= F::LANES && lanes.dirs.len() >= F::LANES);
     let scene = tracer.scene;
-    let all = if F::LANES >= 32 {
-        u32::MAX
-    } else {
-        (1u32 << F::LANES) - 1
-    };
+    let all = if F::LANES >= 32 { u32::MAX } else { (1u32 << F::LANES) - 1 };
     let active = lanes.active & all;
     let miss = active & !lanes.hit;
     let mut result = Color::<F>::zero();
@@ -252,11 +240,7 @@ where
         }
         remaining &= !group;
         let c = how.shade_group(tracer, lanes, group, first, depth);
-        result = if group == active {
-            c
-        } else {
-            Color::select(lane_mask::<F>(group), c, result)
-        };
+        result = if group == active { c } else { Color::select(lane_mask::<F>(group), c, result) };
     }
     result
 }
@@ -392,11 +376,7 @@ where
 {
     let shader = &tracer.scene.surfaces[lanes.hits[first].surface as usize];
     let mask = lane_mask::<F>(group);
-    let mut ctx = SceneContext {
-        globals: gather_globals::<F>(lanes.hits, group, first),
-        tracer,
-        depth,
-    };
+    let mut ctx = SceneContext { globals: gather_globals::<F>(lanes.hits, group, first), tracer, depth };
     let mut e = Exec::with_mask(mask);
     let out = shader.shade(&mut ctx, &mut e);
     composite::<F, S, L>(tracer, lanes, group, depth, out)
@@ -440,10 +420,7 @@ where
         &dirs,
         bits,
         lanes.camera,
-        Depth {
-            trace: depth.trace,
-            layer: depth.layer + 1,
-        },
+        Depth { trace: depth.trace, layer: depth.layer + 1 },
     );
     let composite = out.Ci + (Color::splat(one) - out.Oi) * behind;
     Color::select(see_through, composite, out.Ci)
@@ -477,13 +454,7 @@ where
             hit_bits |= 1 << i;
         }
     }
-    let lanes = Lanes {
-        hits: &hits,
-        dirs,
-        active,
-        hit: hit_bits,
-        camera,
-    };
+    let lanes = Lanes { hits: &hits, dirs, active, hit: hit_bits, camera };
     shade_lanes::<F, S, L>(tracer, &lanes, depth)
 }
 
@@ -544,9 +515,7 @@ impl<F: ShadingFloat, S: SurfaceShader, L: LightShader> ShadingContext<F> for Sc
             p,
             cone,
             |mask, p, out| {
-                tracer
-                    .shadows
-                    .then(|| Color::splat(shadow_visibility::<F, S, L>(tracer.scene, mask, p, out)))
+                tracer.shadows.then(|| Color::splat(shadow_visibility::<F, S, L>(tracer.scene, mask, p, out)))
             },
             body,
         );
@@ -577,10 +546,7 @@ impl<F: ShadingFloat, S: SurfaceShader, L: LightShader> ShadingContext<F> for Sc
             &dirs,
             bits,
             false,
-            Depth {
-                trace: self.depth.trace + 1,
-                layer: self.depth.layer,
-            },
+            Depth { trace: self.depth.trace + 1, layer: self.depth.layer },
         )
     }
 }

@@ -10,11 +10,7 @@ use glam::Vec3A;
 
 fn random_unit(rng: &mut SplitMix64) -> Vec3A {
     loop {
-        let v = Vec3A::new(
-            rng.uniform(-1.0, 1.0) as f32,
-            rng.uniform(-1.0, 1.0) as f32,
-            rng.uniform(-1.0, 1.0) as f32,
-        );
+        let v = Vec3A::new(rng.uniform(-1.0, 1.0) as f32, rng.uniform(-1.0, 1.0) as f32, rng.uniform(-1.0, 1.0) as f32);
         let l = v.length_squared();
         if l > 1e-4 && l <= 1.0 {
             return v / l.sqrt();
@@ -33,21 +29,10 @@ fn bvh_closest_and_any_hit_equal_brute_force_on_the_bunny() {
         // Origins around the bunny (unit height at the origin) aimed at points inside its box,
         // plus a share of fully random directions.
         let o = random_unit(&mut rng) * rng.uniform(0.8, 2.5) as f32;
-        let target = Vec3A::new(
-            rng.uniform(-0.5, 0.5) as f32,
-            rng.uniform(-0.5, 0.5) as f32,
-            rng.uniform(-0.4, 0.4) as f32,
-        );
-        let d = if k % 5 == 0 {
-            random_unit(&mut rng)
-        } else {
-            (target - o).normalize()
-        };
-        let tmax = if k % 7 == 0 {
-            rng.uniform(0.1, 3.0) as f32
-        } else {
-            f32::INFINITY
-        };
+        let target =
+            Vec3A::new(rng.uniform(-0.5, 0.5) as f32, rng.uniform(-0.5, 0.5) as f32, rng.uniform(-0.4, 0.4) as f32);
+        let d = if k % 5 == 0 { random_unit(&mut rng) } else { (target - o).normalize() };
+        let tmax = if k % 7 == 0 { rng.uniform(0.1, 3.0) as f32 } else { f32::INFINITY };
         let fast = accel.closest_hit(o, d, 0.0, tmax);
         let slow = accel.closest_hit_brute_force(o, d, 0.0, tmax);
         match (fast, slow) {
@@ -64,11 +49,7 @@ fn bvh_closest_and_any_hit_equal_brute_force_on_the_bunny() {
             }
             (a, b) => panic!("ray {k} from {o} along {d}: BVH {a:?} vs brute force {b:?}"),
         }
-        assert_eq!(
-            accel.occluded(o, d, 0.0, tmax),
-            accel.occluded_brute_force(o, d, 0.0, tmax),
-            "ray {k}"
-        );
+        assert_eq!(accel.occluded(o, d, 0.0, tmax), accel.occluded_brute_force(o, d, 0.0, tmax), "ray {k}");
     }
     assert!(hits > 4000, "only {hits} of 10000 rays hit the bunny");
     assert!(ties < 10, "{ties} ties");
@@ -104,18 +85,11 @@ fn triangulated_sphere_gives_the_analytic_hit_mask() {
                 hits += 1;
                 let t = -b - (1.0 - q.length_squared()).sqrt();
                 let cos = (1.0 - closest * closest).sqrt();
-                assert!(
-                    (h.t as f64 - t).abs() <= slack / cos.max(0.05) + 1e-5,
-                    "pixel ({x}, {y}): t {} vs {t}",
-                    h.t
-                );
+                assert!((h.t as f64 - t).abs() <= slack / cos.max(0.05) + 1e-5, "pixel ({x}, {y}): t {} vs {t}", h.t);
             }
         }
     }
-    assert!(
-        compared > size * size * 95 / 100,
-        "only {compared} pixels away from the silhouette"
-    );
+    assert!(compared > size * size * 95 / 100, "only {compared} pixels away from the silhouette");
     // The workload reports 69.8 % of the pixels covered at 512²; a few silhouette pixels are left out here.
     assert!((hits as f64 / (size * size) as f64 - 0.698).abs() < 0.03, "{hits} hits");
 }
@@ -126,8 +100,5 @@ fn embedded_bunny_loads_with_normals_and_uvs() {
     assert_eq!(m.triangle_count(), 3674);
     assert_eq!(m.normals.len(), m.positions.len());
     assert!(m.normals.iter().all(|n| (n.length() - 1.0).abs() < 1e-4));
-    assert!(m
-        .uvs
-        .iter()
-        .all(|uv| (0.0..=1.0).contains(&uv.x) && (0.0..=1.0).contains(&uv.y)));
+    assert!(m.uvs.iter().all(|uv| (0.0..=1.0).contains(&uv.x) && (0.0..=1.0).contains(&uv.y)));
 }

@@ -11,45 +11,19 @@ use common::{Mirror, SDerivs, TestLight, TestSurface};
 use glam::{Mat4, Vec3, Vec3A};
 
 fn opts(shadows: bool) -> RenderOptions {
-    RenderOptions {
-        threads: 1,
-        shadows,
-        ..RenderOptions::default()
-    }
+    RenderOptions { threads: 1, shadows, ..RenderOptions::default() }
 }
 
 /// A ground plane (surface 0) and a sphere (surface 1) of radius 0.5 floating at height 1,
 /// a light straight above, looked at from the front and above.
 fn shadow_scene(ground: TestSurface, ball: TestSurface) -> Scene<TestSurface, TestLight> {
-    let camera = Camera::new(
-        Vec3A::new(0.0, 3.0, 4.0),
-        Vec3A::new(0.0, 0.3, 0.0),
-        Vec3A::Y,
-        0.9,
-        48,
-        48,
-    );
+    let camera = Camera::new(Vec3A::new(0.0, 3.0, 4.0), Vec3A::new(0.0, 0.3, 0.0), Vec3A::Y, 0.9, 48, 48);
     let meshes = [Mesh::ground_quad(8.0, 4.0), Mesh::uv_sphere(0.5, 32, 16)];
     let instances = vec![
-        Instance {
-            mesh: 0,
-            surface: 0,
-            transform: Mat4::IDENTITY,
-        },
-        Instance {
-            mesh: 1,
-            surface: 1,
-            transform: Mat4::from_translation(Vec3::new(0.0, 1.0, 0.0)),
-        },
+        Instance { mesh: 0, surface: 0, transform: Mat4::IDENTITY },
+        Instance { mesh: 1, surface: 1, transform: Mat4::from_translation(Vec3::new(0.0, 1.0, 0.0)) },
     ];
-    Scene::new(
-        camera,
-        &meshes,
-        instances,
-        vec![ground, ball],
-        vec![TestLight::at([0.0, 6.0, 0.0], 1.0)],
-    )
-    .unwrap()
+    Scene::new(camera, &meshes, instances, vec![ground, ball], vec![TestLight::at([0.0, 6.0, 0.0], 1.0)]).unwrap()
 }
 
 /// The pixel where the camera sees the ground point (0, 0, 0), straight under the sphere.
@@ -95,10 +69,7 @@ fn shadows_darken_what_they_should() {
         } else {
             // The passive integrator adds sky light bounced once; the shadow still removes
             // the direct part.
-            assert!(
-                under_lit - under_shadowed > 0.6,
-                "{name}: {under_lit} vs {under_shadowed}"
-            );
+            assert!(under_lit - under_shadowed > 0.6, "{name}: {under_lit} vs {under_shadowed}");
         }
         // In the open, shadows change nothing.
         let (a, b) = (lit.pixel(fx, fy), shadowed.pixel(fx, fy));
@@ -124,23 +95,15 @@ fn transparent_screen_lets_the_background_through() {
         type Render = fn(&Scene<TestSurface, TestLight>) -> Image;
         let renders: [(&str, Render); 4] = [
             ("scalar", |s| render_scalar(s, &opts(false))),
-            ("packet x8", |s| {
-                render_packet::<anysl_simd::F32x8, _, _>(s, &opts(false))
-            }),
-            ("packet split", |s| {
-                render_packet_split::<f32, _, _>(s, &opts(false), 16)
-            }),
+            ("packet x8", |s| render_packet::<anysl_simd::F32x8, _, _>(s, &opts(false))),
+            ("packet split", |s| render_packet_split::<f32, _, _>(s, &opts(false), 16)),
             ("pbrt active", |s| render_pbrt(s, &opts(false), Integrator::Active)),
         ];
         // The reference: the same scene with the sphere moved out of sight.
         let mut empty = Scene::new(
             clear.camera,
             &[Mesh::ground_quad(8.0, 4.0)],
-            vec![Instance {
-                mesh: 0,
-                surface: 0,
-                transform: Mat4::IDENTITY,
-            }],
+            vec![Instance { mesh: 0, surface: 0, transform: Mat4::IDENTITY }],
             vec![lambert.clone()],
             vec![TestLight::at([0.0, 6.0, 0.0], 1.0)],
         )
@@ -149,10 +112,7 @@ fn transparent_screen_lets_the_background_through() {
         for (name, render) in renders {
             let reference = render(&empty);
             let through = render(&clear);
-            assert!(
-                reference.max_abs_diff(&through) < 1e-5,
-                "{name}: an Oi = 0 screen is visible"
-            );
+            assert!(reference.max_abs_diff(&through) < 1e-5, "{name}: an Oi = 0 screen is visible");
             // Half opacity through the sphere's centre: two layers of (0.5 red, Oi 0.5)
             // over the ground, Ci + (1 − Oi)·behind twice = 0.75 red + 0.25 ground.
             let mixed = render(&half);
@@ -178,10 +138,7 @@ fn mirror_reflects_the_scene_through_trace() {
     // The lower half of the sphere mirrors the green ground.
     let (x, y) = ground_pixel(&scene, Vec3A::new(0.0, 0.62, 0.3));
     let p = img.pixel(x, y);
-    assert!(
-        p[1] > 0.1 && p[1] > 2.0 * p[0],
-        "mirror shows {p:?}, not the green ground"
-    );
+    assert!(p[1] > 0.1 && p[1] > 2.0 * p[0], "mirror shows {p:?}, not the green ground");
 }
 
 #[test]
@@ -213,20 +170,10 @@ fn scalar_renderer_derivatives_match_finite_differences() {
         render_packet::<f32, _, _>(&scene, &opts(false)),
         render_packet::<anysl_simd::F32x8, _, _>(&scene, &opts(false)),
     ] {
-        assert!(
-            packet.max_abs_diff(&img) < 1e-5,
-            "packet derivatives differ by {}",
-            packet.max_abs_diff(&img)
-        );
+        assert!(packet.max_abs_diff(&img) < 1e-5, "packet derivatives differ by {}", packet.max_abs_diff(&img));
     }
     // … and with derivatives switched off every renderer sees zero.
-    let plain = RenderOptions {
-        derivatives: false,
-        ..opts(false)
-    };
-    assert_eq!(
-        render_packet::<anysl_simd::F32x8, _, _>(&scene, &plain).pixel(32, 32)[0],
-        0.0
-    );
+    let plain = RenderOptions { derivatives: false, ..opts(false) };
+    assert_eq!(render_packet::<anysl_simd::F32x8, _, _>(&scene, &plain).pixel(32, 32)[0], 0.0);
     assert_eq!(render_scalar(&scene, &plain).pixel(32, 32)[0], 0.0);
 }

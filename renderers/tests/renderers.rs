@@ -17,43 +17,25 @@ use common::{workload_lights, Mirror, TestLight, TestSurface};
 const MIN_PSNR: f64 = 40.0;
 
 fn opts() -> RenderOptions {
-    RenderOptions {
-        threads: 1,
-        ..RenderOptions::default()
-    }
+    RenderOptions { threads: 1, ..RenderOptions::default() }
 }
 
 fn assert_agree(name: &str, reference: &Image, other: &Image) {
     let p = reference.psnr(other);
-    assert!(
-        p >= MIN_PSNR,
-        "{name}: PSNR {p:.1} dB < {MIN_PSNR} dB (max diff {})",
-        reference.max_abs_diff(other)
-    );
+    assert!(p >= MIN_PSNR, "{name}: PSNR {p:.1} dB < {MIN_PSNR} dB (max diff {})", reference.max_abs_diff(other));
 }
 
 /// Every renderer and instantiation that runs the shader's own lighting, against the scalar
 /// renderer.
 fn check_all_agree(scene: &Scene<TestSurface, TestLight>, opts: &RenderOptions) {
     let reference = render_scalar(scene, opts);
-    assert!(
-        reference.mean().iter().any(|c| *c > 0.01),
-        "the reference picture is black"
-    );
+    assert!(reference.mean().iter().any(|c| *c > 0.01), "the reference picture is black");
     assert_agree("packet f32", &reference, &render_packet::<f32, _, _>(scene, opts));
     assert_agree("packet f64", &reference, &render_packet::<f64, _, _>(scene, opts));
     for lanes in [4, 8, 16] {
-        assert_agree(
-            "packet split f32",
-            &reference,
-            &render_packet_split::<f32, _, _>(scene, opts, lanes),
-        );
+        assert_agree("packet split f32", &reference, &render_packet_split::<f32, _, _>(scene, opts, lanes));
     }
-    assert_agree(
-        "scalar f64",
-        &reference,
-        &render_scalar_as::<f64, anysl_ad::Dual<f64>, _, _>(scene, opts),
-    );
+    assert_agree("scalar f64", &reference, &render_scalar_as::<f64, anysl_ad::Dual<f64>, _, _>(scene, opts));
     assert_agree("pbrt active", &reference, &render_pbrt(scene, opts, Integrator::Active));
     check_simd_agree(scene, opts, &reference);
 }
@@ -82,35 +64,24 @@ fn table1_lambert_agrees_across_renderers() {
 #[test]
 fn supersampled_and_parallel_renders_agree() {
     let scene = scenes::table1(TestSurface::lambert(0.8, [1.0, 0.9, 0.7]), workload_lights(), 48);
-    let o = RenderOptions {
-        spp: 4,
-        threads: 2,
-        ..RenderOptions::default()
-    };
+    let o = RenderOptions { spp: 4, threads: 2, ..RenderOptions::default() };
     check_all_agree(&scene, &o);
     // Threads change nothing, bit for bit.
     let one = RenderOptions { threads: 1, ..o };
     assert_eq!(render_scalar(&scene, &o), render_scalar(&scene, &one));
-    assert_eq!(
-        render_packet::<f32, _, _>(&scene, &o),
-        render_packet::<f32, _, _>(&scene, &one)
-    );
+    assert_eq!(render_packet::<f32, _, _>(&scene, &o), render_packet::<f32, _, _>(&scene, &one));
 }
 
 /// Ten different shaders (Lambert tints, a mirror, see-through screens) in one scene, so that
 /// packets mix shaders, misses and secondary rays.
 #[test]
 fn mixed_shader_gallery_agrees_across_renderers() {
-    let mut surfaces: Vec<TestSurface> = (0..10)
-        .map(|k| TestSurface::lambert(0.5 + 0.05 * k as f64, [1.0, 0.4 + 0.06 * k as f64, 0.3]))
-        .collect();
+    let mut surfaces: Vec<TestSurface> =
+        (0..10).map(|k| TestSurface::lambert(0.5 + 0.05 * k as f64, [1.0, 0.4 + 0.06 * k as f64, 0.3])).collect();
     surfaces[2] = TestSurface::Mirror(Mirror::default());
     surfaces[6] = TestSurface::screen(0.3);
     surfaces[8] = TestSurface::screen(0.0);
-    let lights = vec![
-        TestLight::at([-3.0, 6.0, 5.0], 0.9),
-        TestLight::at([4.0, 3.0, 2.0], 0.4),
-    ];
+    let lights = vec![TestLight::at([-3.0, 6.0, 5.0], 0.9), TestLight::at([4.0, 3.0, 2.0], 0.4)];
     let scene = scenes::gallery(surfaces, lights, 96);
     check_all_agree(&scene, &opts());
 }
@@ -130,12 +101,7 @@ fn passive_material_matches_a_lambertian_shader() {
     scene.sky.zenith = [0.5; 3];
     let lit = render_pbrt(&scene, &opts(), Integrator::Passive);
     for c in 0..3 {
-        assert!(
-            lit.mean()[c] > passive.mean()[c] + 0.02,
-            "{:?} vs {:?}",
-            lit.mean(),
-            passive.mean()
-        );
+        assert!(lit.mean()[c] > passive.mean()[c] + 0.02, "{:?} vs {:?}", lit.mean(), passive.mean());
     }
 }
 
@@ -143,38 +109,13 @@ fn passive_material_matches_a_lambertian_shader() {
 #[test]
 fn passive_path_tracer_is_deterministic() {
     let lights = vec![TestLight::at([-3.0, 6.0, 5.0], 0.9)];
-    let scene = scenes::gallery(
-        (0..10).map(|_| TestSurface::lambert(0.7, [1.0; 3])).collect(),
-        lights,
-        64,
-    );
-    let a = render_pbrt(
-        &scene,
-        &RenderOptions {
-            threads: 1,
-            spp: 4,
-            ..RenderOptions::default()
-        },
-        Integrator::Passive,
-    );
-    let b = render_pbrt(
-        &scene,
-        &RenderOptions {
-            threads: 2,
-            spp: 4,
-            ..RenderOptions::default()
-        },
-        Integrator::Passive,
-    );
+    let scene = scenes::gallery((0..10).map(|_| TestSurface::lambert(0.7, [1.0; 3])).collect(), lights, 64);
+    let a = render_pbrt(&scene, &RenderOptions { threads: 1, spp: 4, ..RenderOptions::default() }, Integrator::Passive);
+    let b = render_pbrt(&scene, &RenderOptions { threads: 2, spp: 4, ..RenderOptions::default() }, Integrator::Passive);
     assert_eq!(a, b);
     let c = render_pbrt(
         &scene,
-        &RenderOptions {
-            threads: 1,
-            spp: 4,
-            seed: 99,
-            ..RenderOptions::default()
-        },
+        &RenderOptions { threads: 1, spp: 4, seed: 99, ..RenderOptions::default() },
         Integrator::Passive,
     );
     assert_ne!(a, c, "the seed must change the indirect samples");

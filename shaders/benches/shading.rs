@@ -26,13 +26,7 @@ fn points() -> Vec<[f32; 5]> {
             let phi = 2.0 * std::f64::consts::PI * next();
             let r = (1.0 - z * z).sqrt();
             let p = [r * phi.cos(), r * phi.sin(), z];
-            [
-                p[0] as f32,
-                p[1] as f32,
-                p[2] as f32,
-                (0.5 + 0.5 * p[0]) as f32,
-                (0.5 + 0.5 * p[1]) as f32,
-            ]
+            [p[0] as f32, p[1] as f32, p[2] as f32, (0.5 + 0.5 * p[0]) as f32, (0.5 + 0.5 * p[1]) as f32]
         })
         .collect()
 }
@@ -68,12 +62,8 @@ fn table1(c: &mut Criterion) {
     let mut group = c.benchmark_group("table1");
     group.throughput(Throughput::Elements(N as u64));
     for s in Surface::all() {
-        group.bench_function(format!("{}/f32", s.name()), |b| {
-            b.iter(|| shade_all(black_box(&s), &lights, &g1))
-        });
-        group.bench_function(format!("{}/f32x8", s.name()), |b| {
-            b.iter(|| shade_all(black_box(&s), &lights, &g8))
-        });
+        group.bench_function(format!("{}/f32", s.name()), |b| b.iter(|| shade_all(black_box(&s), &lights, &g1)));
+        group.bench_function(format!("{}/f32x8", s.name()), |b| b.iter(|| shade_all(black_box(&s), &lights, &g8)));
     }
     group.finish();
 }
@@ -89,39 +79,19 @@ fn native(c: &mut Criterion) {
             let l = |k: usize| f32x8::from(core::array::from_fn::<f32, 8, _>(|i| c[i][k]));
             let p = [l(0), l(1), l(2)];
             let i = [p[0], p[1], p[2] - f32x8::splat(3.0)];
-            PointsX8 {
-                p,
-                n: p,
-                i,
-                s: l(3),
-                t: l(4),
-                cs: [f32x8::ONE; 3],
-                os: [f32x8::ONE; 3],
-            }
+            PointsX8 { p, n: p, i, s: l(3), t: l(4), cs: [f32x8::ONE; 3], os: [f32x8::ONE; 3] }
         })
         .collect();
     let (plastic, checker) = (Plastic::default(), Checker::default());
     let mut group = c.benchmark_group("native");
     group.throughput(Throughput::Elements(N as u64));
-    group.bench_function("plastic/generic-f32x8", |b| {
-        b.iter(|| shade_all(black_box(&plastic), &lights, &g8))
-    });
+    group.bench_function("plastic/generic-f32x8", |b| b.iter(|| shade_all(black_box(&plastic), &lights, &g8)));
     group.bench_function("plastic/native-f32x8", |b| {
-        b.iter(|| {
-            x8.iter()
-                .map(|x| plastic_x8(black_box(&plastic), &nl, amb, x).0[0].to_array()[0])
-                .sum::<f32>()
-        })
+        b.iter(|| x8.iter().map(|x| plastic_x8(black_box(&plastic), &nl, amb, x).0[0].to_array()[0]).sum::<f32>())
     });
-    group.bench_function("checker/generic-f32x8", |b| {
-        b.iter(|| shade_all(black_box(&checker), &lights, &g8))
-    });
+    group.bench_function("checker/generic-f32x8", |b| b.iter(|| shade_all(black_box(&checker), &lights, &g8)));
     group.bench_function("checker/native-f32x8", |b| {
-        b.iter(|| {
-            x8.iter()
-                .map(|x| checker_x8(black_box(&checker), &nl, amb, x).0[0].to_array()[0])
-                .sum::<f32>()
-        })
+        b.iter(|| x8.iter().map(|x| checker_x8(black_box(&checker), &nl, amb, x).0[0].to_array()[0]).sum::<f32>())
     });
     group.finish();
 }

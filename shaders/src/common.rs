@@ -66,11 +66,7 @@ impl Finish {
         v: Vec3<F>,
     ) -> LightSums<F> {
         let spec = specular(ctx, e, nf, v, F::c(self.roughness));
-        LightSums {
-            amb: Color::zero(),
-            diff: Color::zero(),
-            spec,
-        }
+        LightSums { amb: Color::zero(), diff: Color::zero(), spec }
     }
 
     /// `Ct·(Ka·amb + Kd·diff)`: the matte part.

@@ -77,9 +77,8 @@ closed_set! {
 impl Surface {
     /// The surfaces in the order of the paper's Table 1 (plastic under its paper name
     /// "phong"; [`Surface::by_name`] accepts both).
-    pub const NAMES: [&'static str; 10] = [
-        "brick", "checker", "glass", "granite", "parquet", "phong", "screen", "starball", "venus", "wood",
-    ];
+    pub const NAMES: [&'static str; 10] =
+        ["brick", "checker", "glass", "granite", "parquet", "phong", "screen", "starball", "venus", "wood"];
 
     /// The surface called `name` with default parameters (`"phong"` and `"plastic"` are the
     /// same shader); `None` for an unknown name.
@@ -103,10 +102,7 @@ impl Surface {
     /// Every surface with default parameters, in the order of [`Surface::NAMES`].
     #[must_use]
     pub fn all() -> Vec<Self> {
-        Self::NAMES
-            .iter()
-            .map(|n| Self::by_name(n).expect("every listed name resolves"))
-            .collect()
+        Self::NAMES.iter().map(|n| Self::by_name(n).expect("every listed name resolves")).collect()
     }
 
     /// The shader's RSL name (`"plastic"` for the paper's "phong").
@@ -244,19 +240,11 @@ pub const TABLE1_AMBIENT: [f64; 3] = [0.08, 0.08, 0.10];
 #[must_use]
 pub fn table1_lights() -> Vec<Light> {
     let point = |from: [f64; 3], color: [f64; 3]| {
-        Light::Point(PointLight {
-            intensity: 1.0,
-            lightcolor: color,
-            from,
-            falloff: 0.0,
-        })
+        Light::Point(PointLight { intensity: 1.0, lightcolor: color, from, falloff: 0.0 })
     };
     vec![
         point([-3.0, 4.0, 5.0], [0.90, 0.85, 0.80]),
         point([4.0, -1.5, 3.0], [0.25, 0.30, 0.45]),
-        Light::Ambient(AmbientLight {
-            intensity: 1.0,
-            lightcolor: TABLE1_AMBIENT,
-        }),
+        Light::Ambient(AmbientLight { intensity: 1.0, lightcolor: TABLE1_AMBIENT }),
     ]
 }

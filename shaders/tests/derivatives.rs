@@ -46,19 +46,13 @@ fn every_surface_with_zero_derivatives_matches_f64() {
     let lights = table1_lights();
     for surface in Surface::all() {
         for (u, v) in [(0.13, 0.71), (0.52, 0.27), (0.91, 0.64)] {
-            let mut cd = PointContext::new(
-                Globals::<D>::unit_square(D::new(u, 0.0, 0.0), D::new(v, 0.0, 0.0)),
-                &lights,
-            );
+            let mut cd =
+                PointContext::new(Globals::<D>::unit_square(D::new(u, 0.0, 0.0), D::new(v, 0.0, 0.0)), &lights);
             let a = surface.shade(&mut cd, &mut Exec::new());
             let mut cf = PointContext::new(Globals::<f64>::unit_square(u, v), &lights);
             let b = surface.shade(&mut cf, &mut Exec::new());
             for k in 0..3 {
-                assert!(
-                    (a.Ci.lane(0)[k] - b.Ci.lane(0)[k]).abs() < 1e-12,
-                    "{} at ({u}, {v})",
-                    surface.name()
-                );
+                assert!((a.Ci.lane(0)[k] - b.Ci.lane(0)[k]).abs() < 1e-12, "{} at ({u}, {v})", surface.name());
                 assert_eq!(a.Oi.lane(0)[k], b.Oi.lane(0)[k]);
             }
         }

@@ -42,10 +42,7 @@ fn shade(glass: &Glass, i: [f64; 3]) -> (SurfaceOutput<f64>, Vec<[f64; 3]>, Poin
     let mut g = Globals::<f64>::unit_square(0.5, 0.5);
     g.I = Vec3::from_array(i);
     g.E = g.P - g.I;
-    let mut ctx = Recording {
-        inner: PointContext::new(g, lights),
-        traced: Vec::new(),
-    };
+    let mut ctx = Recording { inner: PointContext::new(g, lights), traced: Vec::new() };
     let out = glass.shade(&mut ctx, &mut Exec::new());
     (out, ctx.traced, PointContext::new(g, lights))
 }
@@ -61,10 +58,7 @@ fn entering_glass_traces_reflection_and_refraction() {
     let (out, traced, _) = shade(&glass, [0.5, 0.0, -1.0]);
     assert_eq!(traced.len(), 2, "reflection and refraction");
     let i = norm([0.5, 0.0, -1.0]);
-    assert!(
-        (traced[0][0] - i[0]).abs() < 1e-12 && (traced[0][2] + i[2]).abs() < 1e-12,
-        "mirror direction"
-    );
+    assert!((traced[0][0] - i[0]).abs() < 1e-12 && (traced[0][2] + i[2]).abs() < 1e-12, "mirror direction");
     // Refraction bends towards the normal: |sin| shrinks by 1/eta.
     let t = norm(traced[1]);
     assert!((t[0] - i[0] / 1.5).abs() < 1e-12 && t[2] < 0.0, "Snell: {t:?}");
@@ -74,19 +68,14 @@ fn entering_glass_traces_reflection_and_refraction() {
 
 #[test]
 fn total_internal_reflection_skips_the_refraction_ray() {
-    let glass = Glass {
-        Ks: 0.0,
-        ..Glass::default()
-    };
+    let glass = Glass { Ks: 0.0, ..Glass::default() };
     // Leaving the glass (I·N > 0) at 60° > asin(1/1.5) ≈ 41.8°: total internal reflection.
     let a = 60f64.to_radians();
     let (out, traced, mut sky) = shade(&glass, [a.sin(), 0.0, a.cos()]);
     assert_eq!(traced.len(), 1, "only the reflection ray: {traced:?}");
     assert!((traced[0][2] + a.cos()).abs() < 1e-12, "mirrored back inside");
     // kr = 1: Ci is exactly the reflected colour.
-    let refl = sky
-        .trace(&Exec::new(), Vec3::zero(), Vec3::from_array(traced[0]))
-        .lane(0);
+    let refl = sky.trace(&Exec::new(), Vec3::zero(), Vec3::from_array(traced[0])).lane(0);
     let ci = out.Ci.lane(0);
     assert!((0..3).all(|k| (ci[k] - refl[k]).abs() < 1e-12), "{ci:?} vs {refl:?}");
     // Below the critical angle, leaving the glass refracts again.
@@ -97,11 +86,7 @@ fn total_internal_reflection_skips_the_refraction_ray() {
 
 #[test]
 fn eta_one_is_invisible_glass() {
-    let glass = Glass {
-        Ks: 0.0,
-        eta: 1.0,
-        ..Glass::default()
-    };
+    let glass = Glass { Ks: 0.0, eta: 1.0, ..Glass::default() };
     let i = [0.3, -0.2, -1.0];
     let (out, traced, mut sky) = shade(&glass, i);
     // kr = 0: no reflection ray; the refraction ray goes straight on.

@@ -17,45 +17,24 @@ fn close(a: [f64; 3], b: [f64; 3], tol: f64) -> bool {
 
 #[test]
 fn pointlight_falls_off_with_the_inverse_square() {
-    let l = PointLight {
-        intensity: 4.0,
-        lightcolor: [1.0, 0.5, 0.25],
-        from: [0.0, 0.0, 2.0],
-        falloff: 2.0,
-    };
+    let l = PointLight { intensity: 4.0, lightcolor: [1.0, 0.5, 0.25], from: [0.0, 0.0, 2.0], falloff: 2.0 };
     let out = eval(&l, [0.0, 0.0, 0.0]);
     assert_eq!(out.emission, Emission::Local);
     assert!(out.lit);
-    assert_eq!(
-        out.l.lane(0),
-        [0.0, 0.0, -2.0],
-        "L points from the light to the surface"
-    );
+    assert_eq!(out.l.lane(0), [0.0, 0.0, -2.0], "L points from the light to the surface");
     assert!(close(out.cl.lane(0), [1.0, 0.5, 0.25], 1e-15));
     let far = eval(&l, [0.0, 0.0, -2.0]).cl.lane(0);
     assert!(close(far, [0.25, 0.125, 0.0625], 1e-15));
     // falloff 0: no distance law; falloff 1: 1/|L|.
-    let none = PointLight {
-        falloff: 0.0,
-        ..l.clone()
-    };
+    let none = PointLight { falloff: 0.0, ..l.clone() };
     assert!(close(eval(&none, [0.0, 0.0, -2.0]).cl.lane(0), [4.0, 2.0, 1.0], 1e-15));
     let linear = PointLight { falloff: 1.0, ..l };
-    assert!(close(
-        eval(&linear, [0.0, 0.0, -2.0]).cl.lane(0),
-        [1.0, 0.5, 0.25],
-        1e-12
-    ));
+    assert!(close(eval(&linear, [0.0, 0.0, -2.0]).cl.lane(0), [1.0, 0.5, 0.25], 1e-12));
 }
 
 #[test]
 fn distantlight_is_solar() {
-    let l = DistantLight {
-        intensity: 2.0,
-        lightcolor: [0.5, 0.5, 1.0],
-        from: [0.0, 1.0, 0.0],
-        to: [0.0, 0.0, 0.0],
-    };
+    let l = DistantLight { intensity: 2.0, lightcolor: [0.5, 0.5, 1.0], from: [0.0, 1.0, 0.0], to: [0.0, 0.0, 0.0] };
     let out = eval(&l, [5.0, 6.0, 7.0]);
     assert_eq!(out.emission, Emission::Distant);
     assert_eq!(out.l.lane(0), [0.0, -1.0, 0.0]);
@@ -65,10 +44,7 @@ fn distantlight_is_solar() {
 
 #[test]
 fn spotlight_cone_and_soft_edge() {
-    let l = SpotLight {
-        intensity: 8.0,
-        ..SpotLight::default()
-    };
+    let l = SpotLight { intensity: 8.0, ..SpotLight::default() };
     let at = |deg: f64, dist: f64| {
         let a = deg.to_radians();
         eval(&l, [dist * a.sin(), 0.0, dist * a.cos()])
@@ -96,10 +72,7 @@ fn spotlight_cone_and_soft_edge() {
 
 #[test]
 fn ambientlight_feeds_ambient_only() {
-    let l = AmbientLight {
-        intensity: 0.5,
-        lightcolor: [0.2, 0.4, 0.6],
-    };
+    let l = AmbientLight { intensity: 0.5, lightcolor: [0.2, 0.4, 0.6] };
     let out = eval(&l, [1.0, 2.0, 3.0]);
     assert_eq!(out.emission, Emission::Ambient);
     assert_eq!(out.cl.lane(0), [0.1, 0.2, 0.3]);
@@ -135,15 +108,8 @@ fn table1_lights_are_the_workload_lights() {
 #[test]
 fn every_light_f32_matches_f64_and_dispatch_is_transparent() {
     let lights = [
-        Light::Point(PointLight {
-            intensity: 20.0,
-            from: [1.0, 2.0, 3.0],
-            ..PointLight::default()
-        }),
-        Light::Distant(DistantLight {
-            from: [1.0, 1.0, 1.0],
-            ..DistantLight::default()
-        }),
+        Light::Point(PointLight { intensity: 20.0, from: [1.0, 2.0, 3.0], ..PointLight::default() }),
+        Light::Distant(DistantLight { from: [1.0, 1.0, 1.0], ..DistantLight::default() }),
         Light::Spot(SpotLight {
             intensity: 20.0,
             from: [0.0, 0.0, 3.0],
@@ -153,10 +119,7 @@ fn every_light_f32_matches_f64_and_dispatch_is_transparent() {
             beamdistribution: 3.0,
             ..SpotLight::default()
         }),
-        Light::Ambient(AmbientLight {
-            intensity: 0.3,
-            ..AmbientLight::default()
-        }),
+        Light::Ambient(AmbientLight { intensity: 0.3, ..AmbientLight::default() }),
     ];
     let mut lit_seen = [0usize; 4];
     for x in samples(1000, 7) {
@@ -168,24 +131,14 @@ fn every_light_f32_matches_f64_and_dispatch_is_transparent() {
             let (ca, cb) = (a.cl.lane(0), b.cl.lane(0));
             for i in 0..3 {
                 assert!(ca[i].is_finite() && cb[i].is_finite(), "{}", light.name());
-                assert!(
-                    (ca[i] - cb[i]).abs() <= 1e-5 * cb[i].abs().max(1.0),
-                    "{}: {ca:?} vs {cb:?}",
-                    light.name()
-                );
+                assert!((ca[i] - cb[i]).abs() <= 1e-5 * cb[i].abs().max(1.0), "{}: {ca:?} vs {cb:?}", light.name());
             }
             lit_seen[k] += usize::from(b.lit && cb.iter().any(|&c| c > 0.0));
         }
     }
-    assert!(
-        lit_seen.iter().all(|&n| n > 50),
-        "every light lights some points: {lit_seen:?}"
-    );
+    assert!(lit_seen.iter().all(|&n| n > 50), "every light lights some points: {lit_seen:?}");
     // The enum forwards exactly.
-    let direct = SpotLight {
-        intensity: 3.0,
-        ..SpotLight::default()
-    };
+    let direct = SpotLight { intensity: 3.0, ..SpotLight::default() };
     let wrapped = Light::from(direct.clone());
     let p = [0.1, 0.2, 1.5];
     assert_eq!(eval(&direct, p).cl.lane(0), eval(&wrapped, p).cl.lane(0));

@@ -154,15 +154,8 @@ fn expected(name: &str) -> Vec<(&'static str, ParamType, ParamValue)> {
 
 /// Every shader of the collection, as `Shader` trait objects.
 fn all_shaders() -> Vec<Box<dyn Shader>> {
-    let mut v: Vec<Box<dyn Shader>> = Surface::all()
-        .into_iter()
-        .map(|s| Box::new(s) as Box<dyn Shader>)
-        .collect();
-    v.extend(
-        Light::NAMES
-            .iter()
-            .map(|n| Box::new(Light::by_name(n).expect("light")) as Box<dyn Shader>),
-    );
+    let mut v: Vec<Box<dyn Shader>> = Surface::all().into_iter().map(|s| Box::new(s) as Box<dyn Shader>).collect();
+    v.extend(Light::NAMES.iter().map(|n| Box::new(Light::by_name(n).expect("light")) as Box<dyn Shader>));
     v
 }
 
@@ -184,12 +177,7 @@ fn parameters_have_classic_names_types_and_defaults() {
             }
             assert_eq!(p.storage, Storage::Uniform, "{}.{name}", meta.name);
             assert!(!p.output && p.array_len.is_none(), "{}.{name}", meta.name);
-            assert_eq!(
-                shader.param(name).as_ref(),
-                Some(&p.default),
-                "{}.{name}: param()",
-                meta.name
-            );
+            assert_eq!(shader.param(name).as_ref(), Some(&p.default), "{}.{name}: param()", meta.name);
         }
     }
 }
@@ -218,9 +206,7 @@ fn set_param_by_name_round_trips() {
                 ParamType::Float => f(0.375),
                 _ => t(0.25, 0.5, 0.75),
             };
-            shader
-                .set_param(&p.name, &value)
-                .unwrap_or_else(|e| panic!("{}.{}: {e}", meta.name, p.name));
+            shader.set_param(&p.name, &value).unwrap_or_else(|e| panic!("{}.{}: {e}", meta.name, p.name));
             assert_eq!(shader.param(&p.name), Some(value), "{}.{}", meta.name, p.name);
             if p.ty.is_triple() {
                 // A float promotes to a triple, as in RSL.
@@ -235,36 +221,20 @@ fn set_param_by_name_round_trips() {
 fn set_param_errors_name_the_parameter() {
     let mut s = Surface::by_name("phong").expect("phong");
     s.set_param("Kd", &f(0.9)).expect("Kd exists");
-    assert_eq!(
-        s,
-        Surface::Plastic(anysl_shaders::Plastic {
-            Kd: 0.9,
-            ..Default::default()
-        })
-    );
+    assert_eq!(s, Surface::Plastic(anysl_shaders::Plastic { Kd: 0.9, ..Default::default() }));
 
     let err = s.set_param("Kx", &f(1.0)).expect_err("no Kx");
     assert!(matches!(&err, ParamError::Unknown { name, .. } if name == "Kx"));
     let text = err.to_string();
-    assert!(
-        text.contains("'Kx'") && text.contains("'plastic'") && text.contains("roughness"),
-        "{text}"
-    );
+    assert!(text.contains("'Kx'") && text.contains("'plastic'") && text.contains("roughness"), "{text}");
 
-    let err = s
-        .set_param("roughness", &t(1.0, 2.0, 3.0))
-        .expect_err("a float cannot take a triple");
+    let err = s.set_param("roughness", &t(1.0, 2.0, 3.0)).expect_err("a float cannot take a triple");
     assert!(matches!(&err, ParamError::Type { name, expected: ParamType::Float, .. } if name == "roughness"));
     assert!(err.to_string().contains("'roughness'"), "{err}");
 
     let mut light = Light::by_name("spotlight").expect("spotlight");
-    let err = light
-        .set_param("lightcolor", &ParamValue::String("red".into()))
-        .expect_err("string");
+    let err = light.set_param("lightcolor", &ParamValue::String("red".into())).expect_err("string");
     assert!(err.to_string().contains("'lightcolor'"), "{err}");
     let err = light.set_param("angle", &f(1.0)).expect_err("no angle");
-    assert!(
-        err.to_string().contains("'angle'") && err.to_string().contains("coneangle"),
-        "{err}"
-    );
+    assert!(err.to_string().contains("'angle'") && err.to_string().contains("coneangle"), "{err}");
 }

@@ -16,15 +16,7 @@ fn points_x8(xs: &[Sample]) -> PointsX8 {
     let s = |v: F32x8| f32x8::from(core::array::from_fn::<f32, 8, _>(|k| v.lane(k) as f32));
     let v3 = |v: Vec3<F32x8>| [s(v.x), s(v.y), s(v.z)];
     let c3 = |c: Color<F32x8>| [s(c.r), s(c.g), s(c.b)];
-    PointsX8 {
-        p: v3(g.P),
-        n: v3(g.N),
-        i: v3(g.I),
-        s: s(g.s),
-        t: s(g.t),
-        cs: c3(g.Cs),
-        os: c3(g.Os),
-    }
+    PointsX8 { p: v3(g.P), n: v3(g.N), i: v3(g.I), s: s(g.s), t: s(g.t), cs: c3(g.Cs), os: c3(g.Os) }
 }
 
 /// Runs generic (through `PointContext<F32x8>`) and native on `n` samples and returns the
@@ -77,15 +69,7 @@ fn classic_lights() -> Vec<Light> {
 fn native_plastic_matches_generic_f32x8() {
     for (lights, plastic) in [
         (table1_lights(), Plastic::default()),
-        (
-            table1_lights(),
-            Plastic {
-                Kd: 0.8,
-                roughness: 0.08,
-                specularcolor: [1.0, 0.8, 0.6],
-                ..Plastic::default()
-            },
-        ),
+        (table1_lights(), Plastic { Kd: 0.8, roughness: 0.08, specularcolor: [1.0, 0.8, 0.6], ..Plastic::default() }),
         (classic_lights(), Plastic::default()),
     ] {
         let d = max_diff(&plastic, &lights, |l, a, x| plastic_x8(&plastic, l, a, x), 4000);
@@ -118,20 +102,10 @@ fn native_checker_matches_generic_f32x8() {
 fn native_lights_accepts_only_what_the_kernels_implement() {
     let (points, ambient) = native_lights(&table1_lights()).expect("table 1 lights are native");
     assert_eq!(points.len(), 2);
-    assert_eq!(
-        points[0],
-        NativePointLight {
-            from: [-3.0, 4.0, 5.0],
-            color: [0.9, 0.85, 0.8],
-            inverse_square: false
-        }
-    );
+    assert_eq!(points[0], NativePointLight { from: [-3.0, 4.0, 5.0], color: [0.9, 0.85, 0.8], inverse_square: false });
     assert_eq!(ambient, [0.08, 0.08, 0.10]);
     assert!(native_lights(&[Light::Spot(SpotLight::default())]).is_none());
-    let odd = PointLight {
-        falloff: 1.0,
-        ..PointLight::default()
-    };
+    let odd = PointLight { falloff: 1.0, ..PointLight::default() };
     assert!(NativePointLight::from_light(&odd).is_none());
     assert!(native_lights(&[Light::Point(odd)]).is_none());
 }

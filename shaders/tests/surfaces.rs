@@ -41,11 +41,7 @@ fn every_surface_f32_matches_f64() {
         let p999 = quantile(&mut errs, 0.999);
         let max = errs[errs.len() - 1];
         eprintln!("{:10} p99.9 {p999:.2e}  max {max:.2e}", surface.name());
-        assert!(
-            p999 <= 1e-4,
-            "{}: 99.9th percentile |f32 - f64| = {p999:e} (max {max:e})",
-            surface.name()
-        );
+        assert!(p999 <= 1e-4, "{}: 99.9th percentile |f32 - f64| = {p999:e} (max {max:e})", surface.name());
         // The shader does something: its colours are not all the same.
         let first = colours[0];
         assert!(
@@ -60,12 +56,7 @@ fn every_surface_f32_matches_f64() {
 fn every_surface_under_classic_lights() {
     // Inverse-square point light, a spot covering the visible hemisphere, a distant light.
     let lights = vec![
-        Light::Point(PointLight {
-            intensity: 30.0,
-            lightcolor: [1.0, 0.9, 0.8],
-            from: [-3.0, 4.0, 5.0],
-            falloff: 2.0,
-        }),
+        Light::Point(PointLight { intensity: 30.0, lightcolor: [1.0, 0.9, 0.8], from: [-3.0, 4.0, 5.0], falloff: 2.0 }),
         Light::Spot(SpotLight {
             intensity: 20.0,
             from: [0.0, 0.0, 4.0],
@@ -80,11 +71,7 @@ fn every_surface_under_classic_lights() {
     for surface in Surface::all() {
         let (mut errs, _) = compare(&surface, &lights, &pts);
         let p999 = quantile(&mut errs, 0.999);
-        assert!(
-            p999 <= 1e-4,
-            "{}: 99.9th percentile |f32 - f64| = {p999:e}",
-            surface.name()
-        );
+        assert!(p999 <= 1e-4, "{}: 99.9th percentile |f32 - f64| = {p999:e}", surface.name());
     }
 }
 
@@ -104,10 +91,7 @@ fn by_name_resolves_every_table1_name() {
     assert_eq!(Surface::by_name("plastic"), Some(Surface::Plastic(Plastic::default())));
     assert!(Surface::by_name("marble").is_none());
     assert!(Surface::by_name("").is_none());
-    assert!(
-        Surface::by_name("Phong").is_none(),
-        "names are case-sensitive, as in RSL"
-    );
+    assert!(Surface::by_name("Phong").is_none(), "names are case-sensitive, as in RSL");
     for name in Light::NAMES {
         assert_eq!(Light::by_name(name).map(|l| l.meta().name), Some(name.to_string()));
     }
@@ -134,21 +118,13 @@ fn screen_has_holes_and_wire() {
     let screen = Screen::default();
     let out = shade_grid(&screen, 64);
     let holes = out.iter().filter(|(ci, oi)| *oi == [0.0; 3] && *ci == [0.0; 3]).count();
-    let wire = out
-        .iter()
-        .filter(|(ci, oi)| *oi == [1.0; 3] && ci.iter().any(|&c| c > 0.0))
-        .count();
+    let wire = out.iter().filter(|(ci, oi)| *oi == [1.0; 3] && ci.iter().any(|&c| c > 0.0)).count();
     assert_eq!(holes + wire, out.len(), "every point is either a hole or wire");
     // density 0.25 in s or t: 1 - 0.75² = 43.75 % wire.
     let frac = wire as f64 / out.len() as f64;
     assert!((frac - 0.4375).abs() < 0.05, "wire fraction {frac}");
     // The mask agrees with the classic condition.
-    for (s, t, wire) in [
-        (0.01, 0.5, true),
-        (0.5, 0.01, true),
-        (0.03, 0.03, false),
-        (0.5, 0.5, true),
-    ] {
+    for (s, t, wire) in [(0.01, 0.5, true), (0.5, 0.01, true), (0.03, 0.03, false), (0.5, 0.5, true)] {
         let m: bool = screen.wire(s, t);
         assert_eq!(m, wire, "s = {s}, t = {t}");
     }
@@ -189,11 +165,7 @@ fn starball_has_star_band_and_ball() {
     let r: f64 = 0.4;
     assert_eq!(col([0.0, r.sin(), r.cos()]), sb.starcolor, "tip");
     let notch = std::f64::consts::PI / 2.0 + std::f64::consts::PI / 5.0;
-    assert_eq!(
-        col([r.sin() * notch.cos(), r.sin() * notch.sin(), r.cos()]),
-        sb.ballcolor,
-        "between tips"
-    );
+    assert_eq!(col([r.sin() * notch.cos(), r.sin() * notch.sin(), r.cos()]), sb.ballcolor, "between tips");
     assert_eq!(col([1.0, 0.0, 0.0]), sb.bandcolor, "band at the side");
     assert_eq!(col([0.0, 1.0, 0.0]), sb.ballcolor, "pole");
 }
@@ -217,10 +189,6 @@ fn every_surface_f32x8_lanes_match_scalar_f32() {
             }
         }
         let p999 = quantile(&mut errs, 0.999);
-        assert!(
-            p999 <= 1e-4,
-            "{}: 99.9th percentile |f32x8 - f32| = {p999:e}",
-            surface.name()
-        );
+        assert!(p999 <= 1e-4, "{}: 99.9th percentile |f32x8 - f32| = {p999:e}", surface.name());
     }
 }

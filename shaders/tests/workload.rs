@@ -39,27 +39,14 @@ fn hits() -> Vec<Hit> {
 
 /// A reference image (`.npy`, `<f4`, 512×512×3), or `None` when the workload is not checked out.
 fn reference(name: &str) -> Option<Vec<f32>> {
-    let path: PathBuf = [
-        env!("CARGO_MANIFEST_DIR"),
-        "..",
-        "..",
-        "shared",
-        "bench",
-        "ref",
-        &format!("{name}.npy"),
-    ]
-    .iter()
-    .collect();
+    let path: PathBuf =
+        [env!("CARGO_MANIFEST_DIR"), "..", "..", "shared", "bench", "ref", &format!("{name}.npy")].iter().collect();
     let bytes = std::fs::read(&path).ok()?;
     assert_eq!(&bytes[..6], b"\x93NUMPY", "{}: not an npy file", path.display());
     let header = u16::from_le_bytes([bytes[8], bytes[9]]) as usize;
     let data = &bytes[10 + header..];
     assert_eq!(data.len(), W * W * 3 * 4);
-    Some(
-        data.chunks_exact(4)
-            .map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]]))
-            .collect(),
-    )
+    Some(data.chunks_exact(4).map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect())
 }
 
 fn check<S: SurfaceShader>(name: &str, shader: &S, cs: [f64; 3]) {
@@ -87,44 +74,21 @@ fn check<S: SurfaceShader>(name: &str, shader: &S, cs: [f64; 3]) {
         }
     }
     eprintln!("{name}: max |f32 - reference| = {max_err:.3e}");
-    assert!(
-        max_err <= 1e-4,
-        "{name}: max error {max_err:e} exceeds the workload's 1e-4"
-    );
+    assert!(max_err <= 1e-4, "{name}: max error {max_err:e} exceeds the workload's 1e-4");
 }
 
 #[test]
 fn plastic_reproduces_the_workload() {
-    let plastic = Plastic {
-        Ka: 1.0,
-        Kd: 0.8,
-        Ks: 0.5,
-        roughness: 0.08,
-        ..Plastic::default()
-    };
+    let plastic = Plastic { Ka: 1.0, Kd: 0.8, Ks: 0.5, roughness: 0.08, ..Plastic::default() };
     check("plastic", &plastic, [0.80, 0.25, 0.15]);
 }
 
 #[test]
 fn wood_reproduces_the_workload() {
-    check(
-        "wood",
-        &Wood {
-            roughness: 0.08,
-            ..Wood::default()
-        },
-        [1.0; 3],
-    );
+    check("wood", &Wood { roughness: 0.08, ..Wood::default() }, [1.0; 3]);
 }
 
 #[test]
 fn granite_reproduces_the_workload() {
-    check(
-        "granite",
-        &Granite {
-            roughness: 0.08,
-            ..Granite::default()
-        },
-        [1.0; 3],
-    );
+    check("granite", &Granite { roughness: 0.08, ..Granite::default() }, [1.0; 3]);
 }

@@ -8,10 +8,7 @@ use anysl_shaders::{table1_lights, Light, Surface};
 use anysl_simd::{F32x16, F32x4, F32x8};
 
 fn surfaces() -> Vec<(&'static str, Surface)> {
-    Surface::NAMES
-        .iter()
-        .map(|n| (*n, Surface::by_name(n).expect("known shader")))
-        .collect()
+    Surface::NAMES.iter().map(|n| (*n, Surface::by_name(n).expect("known shader"))).collect()
 }
 
 /// Shades one set of globals and returns (Ci, Oi).
@@ -42,10 +39,7 @@ fn every_shader_runs_under_every_instantiation() {
         check("f32x16", shade_points_f64::<F32x16, _, _>(&s, &lights, &set));
         check("dual-f32", shade_points_f64::<Dual<f32>, _, _>(&s, &lights, &set));
         check("dual-f32x8", shade_points_f64::<Dual<F32x8>, _, _>(&s, &lights, &set));
-        check(
-            "interval-f32",
-            shade_points_f64::<Interval<f32>, _, _>(&s, &lights, &set),
-        );
+        check("interval-f32", shade_points_f64::<Interval<f32>, _, _>(&s, &lights, &set));
     }
 }
 
@@ -86,10 +80,7 @@ fn simd_lanes_equal_scalar() {
                 let d8 = shade_points_f64::<Dual<F32x8>, _, _>(&s, &lights, &set);
                 let d1 = shade_points_f64::<Dual<f32>, _, _>(&s, &lights, &set);
                 let (bad, worst) = compare(&d8, &d1, 1e-5);
-                assert!(
-                    bad * 2000 <= total,
-                    "{name} dual-f32x8: {bad} of {total} values differ (worst {worst:e})"
-                );
+                assert!(bad * 2000 <= total, "{name} dual-f32x8: {bad} of {total} values differ (worst {worst:e})");
                 d8
             }),
         ] {
@@ -97,10 +88,7 @@ fn simd_lanes_equal_scalar() {
                 continue;
             }
             let (bad, worst) = compare(&out, &scalar, 1e-5);
-            assert!(
-                bad * 2000 <= total,
-                "{name} {inst}: {bad} of {total} values differ from f32 (worst {worst:e})"
-            );
+            assert!(bad * 2000 <= total, "{name} {inst}: {bad} of {total} values differ from f32 (worst {worst:e})");
         }
     }
 }
@@ -134,11 +122,7 @@ fn dual_derivatives_match_finite_differences() {
                 let at = |h: f64| shade::<f64>(&s, &lights, shifted(&g, h, along_x)).0;
                 let fd = |h: f64| {
                     let (a, b) = (at(h), at(-h));
-                    [
-                        (a.r - b.r) / (2.0 * h),
-                        (a.g - b.g) / (2.0 * h),
-                        (a.b - b.b) / (2.0 * h),
-                    ]
+                    [(a.r - b.r) / (2.0 * h), (a.g - b.g) / (2.0 * h), (a.b - b.b) / (2.0 * h)]
                 };
                 let (d1, d2) = (fd(h), fd(h / 2.0));
                 checked += 1;
@@ -147,11 +131,7 @@ fn dual_derivatives_match_finite_differences() {
                     continue;
                 }
                 smooth += 1;
-                let ad = if along_x {
-                    [ci.r.ddx, ci.g.ddx, ci.b.ddx]
-                } else {
-                    [ci.r.ddy, ci.g.ddy, ci.b.ddy]
-                };
+                let ad = if along_x { [ci.r.ddx, ci.g.ddx, ci.b.ddx] } else { [ci.r.ddy, ci.g.ddy, ci.b.ddy] };
                 for k in 0..3 {
                     // Richardson-extrapolated difference: O(h^4) error.
                     let rich = (4.0 * d2[k] - d1[k]) / 3.0;
@@ -165,10 +145,7 @@ fn dual_derivatives_match_finite_differences() {
                 }
             }
         }
-        assert!(
-            smooth * 2 >= checked,
-            "{name}: only {smooth} of {checked} stencils smooth"
-        );
+        assert!(smooth * 2 >= checked, "{name}: only {smooth} of {checked} stencils smooth");
     }
 }
 
@@ -263,64 +240,13 @@ fn extreme_inputs() {
     let base = Globals::<f32>::unit_square(0.3, 0.7);
     let tiny = f32::from_bits(1);
     let finite_cases: Vec<(&str, Globals<f32>)> = vec![
-        (
-            "P at 1e7",
-            Globals {
-                P: Vec3::c(1e7, -1e7, 1e7),
-                ..base
-            },
-        ),
-        (
-            "s,t at 1e7",
-            Globals {
-                s: 1e7,
-                t: -1e7,
-                u: 1e7,
-                v: 1e7,
-                ..base
-            },
-        ),
-        (
-            "zero N",
-            Globals {
-                N: Vec3::zero(),
-                Ng: Vec3::zero(),
-                ..base
-            },
-        ),
-        (
-            "zero I",
-            Globals {
-                I: Vec3::zero(),
-                ..base
-            },
-        ),
-        (
-            "grazing N.I = 0",
-            Globals {
-                I: Vec3::c(1.0, 0.0, 0.0),
-                ..base
-            },
-        ),
-        (
-            "denormal inputs",
-            Globals {
-                P: Vec3::splat(tiny),
-                s: tiny,
-                t: tiny,
-                u: tiny,
-                v: tiny,
-                ..base
-            },
-        ),
-        (
-            "negative s,t",
-            Globals {
-                s: -3.25,
-                t: -0.5,
-                ..base
-            },
-        ),
+        ("P at 1e7", Globals { P: Vec3::c(1e7, -1e7, 1e7), ..base }),
+        ("s,t at 1e7", Globals { s: 1e7, t: -1e7, u: 1e7, v: 1e7, ..base }),
+        ("zero N", Globals { N: Vec3::zero(), Ng: Vec3::zero(), ..base }),
+        ("zero I", Globals { I: Vec3::zero(), ..base }),
+        ("grazing N.I = 0", Globals { I: Vec3::c(1.0, 0.0, 0.0), ..base }),
+        ("denormal inputs", Globals { P: Vec3::splat(tiny), s: tiny, t: tiny, u: tiny, v: tiny, ..base }),
+        ("negative s,t", Globals { s: -3.25, t: -0.5, ..base }),
     ];
     for (name, s) in surfaces() {
         for (case, g) in &finite_cases {
@@ -335,12 +261,7 @@ fn extreme_inputs() {
             assert!(cd.r.val.is_finite() && cd.r.ddx.is_finite(), "{name} dual with {case}");
         }
         for bad in [f32::NAN, f32::INFINITY, f32::NEG_INFINITY] {
-            let g = Globals {
-                P: Vec3::splat(bad),
-                s: bad,
-                t: bad,
-                ..base
-            };
+            let g = Globals { P: Vec3::splat(bad), s: bad, t: bad, ..base };
             let _ = shade::<f32>(&s, &lights, g);
             let _ = shade::<F32x8>(&s, &lights, lift::<F32x8>(&g));
             let _ = shade::<Interval<f32>>(&s, &lights, lift::<Interval<f32>>(&g));

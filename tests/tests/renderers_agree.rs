@@ -26,10 +26,7 @@ const PACKET_MIN_PSNR: f64 = 40.0;
 const PBRT_MIN_PSNR: f64 = 35.0;
 
 fn opts() -> RenderOptions {
-    RenderOptions {
-        threads: 0,
-        ..RenderOptions::default()
-    }
+    RenderOptions { threads: 0, ..RenderOptions::default() }
 }
 
 fn table1(name: &str, size: u32) -> Scene<Surface, Light> {
@@ -43,10 +40,7 @@ fn every_table1_shader_agrees_across_renderers() {
     for name in Surface::NAMES {
         let scene = table1(name, 128);
         let scalar = render_scalar(&scene, &opts());
-        assert!(
-            scalar.mean().iter().any(|c| *c > 0.01),
-            "{name}: the scalar picture is black"
-        );
+        assert!(scalar.mean().iter().any(|c| *c > 0.01), "{name}: the scalar picture is black");
         let packet = render_packet::<F32x8, _, _>(&scene, &opts());
         let pbrt = render_pbrt(&scene, &opts(), Integrator::Active);
         let (p_packet, p_pbrt) = (packet.psnr(&scalar), pbrt.psnr(&scalar));
@@ -72,10 +66,7 @@ fn every_table1_shader_agrees_across_renderers() {
 /// renderers they agree again (point-sampled `filterstep` = `step`).
 #[test]
 fn packet_renderer_filters_exactly_the_derivative_shaders() {
-    let plain = RenderOptions {
-        derivatives: false,
-        ..opts()
-    };
+    let plain = RenderOptions { derivatives: false, ..opts() };
     for name in ["checker", "brick", "phong"] {
         let scene = table1(name, 64);
         let uses = scene.surfaces[0].meta().uses_derivatives;
@@ -83,10 +74,7 @@ fn packet_renderer_filters_exactly_the_derivative_shaders() {
         let point_sampled = render_packet::<F32x8, _, _>(&scene, &plain);
         assert_eq!(filtered != point_sampled, uses, "{name}: uses_derivatives = {uses}");
         let p = point_sampled.psnr(&render_scalar(&scene, &plain));
-        assert!(
-            p >= PACKET_MIN_PSNR,
-            "{name}: unfiltered packet vs unfiltered scalar {p:.1} dB"
-        );
+        assert!(p >= PACKET_MIN_PSNR, "{name}: unfiltered packet vs unfiltered scalar {p:.1} dB");
     }
 }
 
@@ -106,18 +94,10 @@ fn golden_dir() -> PathBuf {
 
 /// PSNR in dB of two 8-bit buffers (peak 255) and their largest difference.
 fn compare8(a: &[u8], b: &[u8]) -> (f64, u8) {
-    let sse: f64 = a
-        .iter()
-        .zip(b)
-        .map(|(x, y)| (f64::from(*x) - f64::from(*y)).powi(2))
-        .sum();
+    let sse: f64 = a.iter().zip(b).map(|(x, y)| (f64::from(*x) - f64::from(*y)).powi(2)).sum();
     let max = a.iter().zip(b).map(|(x, y)| x.abs_diff(*y)).max().unwrap_or(0);
     let mse = sse / a.len().max(1) as f64;
-    let psnr = if mse == 0.0 {
-        f64::INFINITY
-    } else {
-        10.0 * (255.0 * 255.0 / mse).log10()
-    };
+    let psnr = if mse == 0.0 { f64::INFINITY } else { 10.0 * (255.0 * 255.0 / mse).log10() };
     (psnr, max)
 }
 
@@ -137,22 +117,14 @@ fn check_golden(name: &str, img: &Image) -> Result<(), String> {
         .to_rgb8();
     let actual = img.to_srgb8();
     let (w, h) = golden.dimensions();
-    let (psnr, max) = if (w, h) == (img.width, img.height) {
-        compare8(golden.as_raw(), &actual)
-    } else {
-        (0.0, 255)
-    };
+    let (psnr, max) = if (w, h) == (img.width, img.height) { compare8(golden.as_raw(), &actual) } else { (0.0, 255) };
     if psnr >= GOLDEN_MIN_PSNR && max <= GOLDEN_MAX_LEVELS {
         return Ok(());
     }
     img.save_png(dir.join(format!("{name}-actual.png")))?;
     if (w, h) == (img.width, img.height) {
-        let diff: Vec<u8> = golden
-            .as_raw()
-            .iter()
-            .zip(&actual)
-            .map(|(a, b)| a.abs_diff(*b).saturating_mul(8))
-            .collect();
+        let diff: Vec<u8> =
+            golden.as_raw().iter().zip(&actual).map(|(a, b)| a.abs_diff(*b).saturating_mul(8)).collect();
         let diff_path = dir.join(format!("{name}-diff.png"));
         image::save_buffer(&diff_path, &diff, w, h, image::ExtendedColorType::Rgb8)
             .map_err(|e| format!("{}: {e}", diff_path.display()))?;
@@ -192,9 +164,6 @@ fn golden_comparison_detects_a_change() {
         *p = p.map(|v| v * 1.1 + 0.01);
     }
     let (psnr, max) = compare8(&a, &brighter.to_srgb8());
-    assert!(
-        psnr < GOLDEN_MIN_PSNR || max > GOLDEN_MAX_LEVELS,
-        "{psnr:.1} dB, {max} levels"
-    );
+    assert!(psnr < GOLDEN_MIN_PSNR || max > GOLDEN_MAX_LEVELS, "{psnr:.1} dB, {max} levels");
     assert_eq!(compare8(&a, &a), (f64::INFINITY, 0));
 }

@@ -131,7 +131,13 @@ fn conformance_suite_through_the_interpreter() {
             failures.push(format!("{name} (8-wide batch of 3): {bad}"));
         }
     }
-    assert!(failures.is_empty(), "{} of {} conformance programs fail:\n{}", failures.len(), files.len(), failures.join("\n"));
+    assert!(
+        failures.is_empty(),
+        "{} of {} conformance programs fail:\n{}",
+        failures.len(),
+        files.len(),
+        failures.join("\n")
+    );
 }
 
 /// The four `.sl` lights run by the interpreter (`InterpLight`) give the hand-written lights'
@@ -162,8 +168,14 @@ fn interpreted_lights_match_the_hand_written_ones() {
                 let (ca, cb) = (a.cl.lane(0), b.cl.lane(0));
                 let (la, lb) = (a.l.lane(0), b.l.lane(0));
                 for i in 0..3 {
-                    assert!((ca[i] - cb[i]).abs() <= 1e-5 * (1.0 + cb[i].abs()), "{name} {setting:?}: Cl {ca:?} vs {cb:?}");
-                    assert!((la[i] - lb[i]).abs() <= 1e-5 * (1.0 + lb[i].abs()), "{name} {setting:?}: L {la:?} vs {lb:?}");
+                    assert!(
+                        (ca[i] - cb[i]).abs() <= 1e-5 * (1.0 + cb[i].abs()),
+                        "{name} {setting:?}: Cl {ca:?} vs {cb:?}"
+                    );
+                    assert!(
+                        (la[i] - lb[i]).abs() <= 1e-5 * (1.0 + lb[i].abs()),
+                        "{name} {setting:?}: L {la:?} vs {lb:?}"
+                    );
                 }
             }
         }

@@ -61,8 +61,18 @@ fn the_interpreter_renders_every_rsl_surface_like_generated_rust() {
         let b = scenes::table1(generated, table1_lights(), SIZE);
         let scalar = render_scalar(&a, &opts);
         diff(&mut failures, format!("{name} scalar"), &scalar, &render_scalar(&b, &opts));
-        diff(&mut failures, format!("{name} packet x8"), &render_packet::<F32x8, _, _>(&a, &opts), &render_packet::<F32x8, _, _>(&b, &opts));
-        diff(&mut failures, format!("{name} packet x4"), &render_packet::<F32x4, _, _>(&a, &opts), &render_packet::<F32x4, _, _>(&b, &opts));
+        diff(
+            &mut failures,
+            format!("{name} packet x8"),
+            &render_packet::<F32x8, _, _>(&a, &opts),
+            &render_packet::<F32x8, _, _>(&b, &opts),
+        );
+        diff(
+            &mut failures,
+            format!("{name} packet x4"),
+            &render_packet::<F32x4, _, _>(&a, &opts),
+            &render_packet::<F32x4, _, _>(&b, &opts),
+        );
         diff(
             &mut failures,
             format!("{name} pbrt"),

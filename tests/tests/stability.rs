@@ -477,23 +477,11 @@ fn denormals_simd_agrees_with_scalar() {
     let ops: [Op; 11] = [
         ("x*1", |x| x * 1.0, |x| x * F32x16::c(1.0)),
         ("x*0.5", |x| x * 0.5, |x| x * F32x16::c(0.5)),
-        (
-            "sqrt|x|",
-            |x| ShadingFloat::sqrt(x.abs()),
-            |x| ShadingFloat::sqrt(ShadingFloat::abs(x)),
-        ),
+        ("sqrt|x|", |x| ShadingFloat::sqrt(x.abs()), |x| ShadingFloat::sqrt(ShadingFloat::abs(x))),
         ("exp", |x| ShadingFloat::exp(x), |x| ShadingFloat::exp(x)),
         ("exp2", |x| ShadingFloat::exp2(x), |x| ShadingFloat::exp2(x)),
-        (
-            "ln|x|",
-            |x| ShadingFloat::ln(x.abs()),
-            |x| ShadingFloat::ln(ShadingFloat::abs(x)),
-        ),
-        (
-            "log2|x|",
-            |x| ShadingFloat::log2(x.abs()),
-            |x| ShadingFloat::log2(ShadingFloat::abs(x)),
-        ),
+        ("ln|x|", |x| ShadingFloat::ln(x.abs()), |x| ShadingFloat::ln(ShadingFloat::abs(x))),
+        ("log2|x|", |x| ShadingFloat::log2(x.abs()), |x| ShadingFloat::log2(ShadingFloat::abs(x))),
         ("sin", |x| ShadingFloat::sin(x), |x| ShadingFloat::sin(x)),
         ("atan", |x| ShadingFloat::atan(x), |x| ShadingFloat::atan(x)),
         (
@@ -634,17 +622,9 @@ fn nan_and_inf_inputs_do_not_poison_other_lanes() {
             continue;
         }
         for ((name, ci8, oi8), (_, ci, oi)) in wide.iter().zip(&alone) {
-            for (a, b) in ci8
-                .lane(k)
-                .iter()
-                .chain(&oi8.lane(k))
-                .zip(ci.lane(0).iter().chain(&oi.lane(0)))
-            {
+            for (a, b) in ci8.lane(k).iter().chain(&oi8.lane(k)).zip(ci.lane(0).iter().chain(&oi.lane(0))) {
                 assert!(a.is_finite(), "{name}: lane {k} poisoned: {a}");
-                assert!(
-                    (a - b).abs() <= 1e-5 * b.abs().max(1.0),
-                    "{name}: lane {k} = {a}, alone {b}"
-                );
+                assert!((a - b).abs() <= 1e-5 * b.abs().max(1.0), "{name}: lane {k} = {a}, alone {b}");
             }
         }
     }

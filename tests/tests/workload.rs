@@ -20,12 +20,7 @@ fn reference_image(shader: &str) -> &'static [f32] {
     let refs = REFS.get_or_init(|| {
         WorkloadShader::NAMES
             .iter()
-            .map(|n| {
-                (
-                    n.to_string(),
-                    reference::load_reference(n).expect("reference arrays in the repo"),
-                )
-            })
+            .map(|n| (n.to_string(), reference::load_reference(n).expect("reference arrays in the repo")))
             .collect()
     });
     &refs.iter().find(|(n, _)| n == shader).expect("a workload shader").1
@@ -74,10 +69,7 @@ fn noise_check_values() {
         let n64 = perlin3(Vec3::<f64>::from_array(p), None, 0);
         assert!((n64 - want).abs() <= 5e-10, "f64 noise{p:?} = {n64}, want {want}");
         let n32 = perlin3(Vec3::<f32>::from_array(p), None, 0);
-        assert!(
-            (f64::from(n32) - want).abs() <= 1e-7,
-            "f32 noise{p:?} = {n32}, want {want}"
-        );
+        assert!((f64::from(n32) - want).abs() <= 1e-7, "f32 noise{p:?} = {n32}, want {want}");
         let x8 = perlin3(Vec3::<F32x8>::from_array(p), None, 0);
         assert_eq!(x8.to_array(), [n32; 8], "F32x8 lanes = f32");
     }
@@ -146,30 +138,18 @@ fn f64_matches_check_values_and_reference() {
         let n = s.n_hit();
         for ch in 0..3 {
             let m = ci[ch][..n].iter().sum::<f64>() / n as f64;
-            assert!(
-                (m - mean[ch]).abs() <= 1e-9,
-                "{name}: mean[{ch}] = {m:.9}, want {:.9}",
-                mean[ch]
-            );
+            assert!((m - mean[ch]).abs() <= 1e-9, "{name}: mean[{ch}] = {m:.9}, want {:.9}", mean[ch]);
         }
         let image = s.to_image(&ci);
         for ((row, col), want) in probes.iter().zip([p0, p1, p2]) {
             for ch in 0..3 {
                 let got = image[(row * SIZE + col) * 3 + ch];
-                assert!(
-                    (got - want[ch]).abs() <= 1e-9,
-                    "{name} ({row}, {col})[{ch}] = {got:.9}, want {:.9}",
-                    want[ch]
-                );
+                assert!((got - want[ch]).abs() <= 1e-9, "{name} ({row}, {col})[{ch}] = {got:.9}, want {:.9}", want[ch]);
             }
         }
         // The reference is this image rounded to f32.
         let reference = reference_image(name);
-        let max = image
-            .iter()
-            .zip(reference)
-            .map(|(a, b)| (a - f64::from(*b)).abs())
-            .fold(0.0, f64::max);
+        let max = image.iter().zip(reference).map(|(a, b)| (a - f64::from(*b)).abs()).fold(0.0, f64::max);
         assert!(max <= 1.2e-7, "{name}: f64 image differs from the reference by {max:e}");
     }
 }
@@ -182,12 +162,7 @@ fn check_instantiation<F: ShadingFloat>() {
     for shader in WorkloadShader::all() {
         let image = s.to_image(&s.shade_all::<F>(&shader, &lights));
         let err = reference::image_error(&image, reference_image(shader.name()));
-        assert!(
-            err.max_abs_err <= 1e-4 && err.pixels_over_1e3 == 0,
-            "{} with {}: {err:?}",
-            shader.name(),
-            F::NAME
-        );
+        assert!(err.max_abs_err <= 1e-4 && err.pixels_over_1e3 == 0, "{} with {}: {err:?}", shader.name(), F::NAME);
     }
 }
 

@@ -122,16 +122,8 @@ pub enum Binary {
     Atan2,
 }
 
-pub const BINARY: [Binary; 8] = [
-    Binary::Add,
-    Binary::Sub,
-    Binary::Mul,
-    Binary::Div,
-    Binary::Min,
-    Binary::Max,
-    Binary::Pow,
-    Binary::Atan2,
-];
+pub const BINARY: [Binary; 8] =
+    [Binary::Add, Binary::Sub, Binary::Mul, Binary::Div, Binary::Min, Binary::Max, Binary::Pow, Binary::Atan2];
 
 impl Binary {
     pub fn apply<F: ShadingFloat>(self, a: F, b: F) -> F {

@@ -151,11 +151,7 @@ pub fn from_rgb<F: ShadingFloat>(to: ColorSpace, c: Color<F>) -> Color<F> {
             let sum = xyz.r + xyz.g + xyz.b;
             let z = F::c(0.0);
             let safe = F::select(sum.eq(z), F::c(1.0), sum);
-            Color::new(
-                F::select(sum.eq(z), z, xyz.r / safe),
-                F::select(sum.eq(z), z, xyz.g / safe),
-                xyz.g,
-            )
+            Color::new(F::select(sum.eq(z), z, xyz.r / safe), F::select(sum.eq(z), z, xyz.g / safe), xyz.g)
         }
         ColorSpace::Yiq => mat3(&RGB_TO_YIQ, c),
     }

@@ -111,11 +111,7 @@ pub fn filterstep<F: ShadingFloat>(edge: F, x: F) -> F {
     let w = filterwidth(x);
     let z = F::c(0.0);
     let has = w.gt(z);
-    let ramp = clamp(
-        (x.value() - edge.value()) / F::select(has, w, F::c(1.0)) + F::c(0.5),
-        z,
-        F::c(1.0),
-    );
+    let ramp = clamp((x.value() - edge.value()) / F::select(has, w, F::c(1.0)) + F::c(0.5), z, F::c(1.0));
     F::select(has, ramp, step(edge.value(), x.value()))
 }
 

@@ -187,12 +187,7 @@ pub fn fresnel<F: ShadingFloat>(i: Vec3<F>, n: Vec3<F>, eta: F) -> Fresnel<F> {
     let b = num / safe_den;
     let kr = (F::c(0.5) * a * a * (one + b * b)).min(one);
     let kr = F::select(degenerate, one, kr);
-    Fresnel {
-        kr,
-        kt: one - kr,
-        r: reflect(iu, n),
-        t: refract(iu, n, eta),
-    }
+    Fresnel { kr, kt: one - kr, r: reflect(iu, n), t: refract(iu, n, eta) }
 }
 
 /// Rotates point `q` by `angle` radians about the axis through `p0` and `p1` (RSL `rotate`).

@@ -151,26 +151,11 @@ pub fn perlin4<F: ShadingFloat>(p: Vec3<F>, t: F, period: Option<(Vec3<F>, F)>, 
     let c = |i, j, k, l, x, y, z, w| grad4::<F>(lattice_hash(&[i, j, k, l], seed), x, y, z, w);
     let (u, v, s, r) = (fade(fx), fade(fy), fade(fz), fade(fw));
     let slice = |l, gw: F| {
-        let x00 = lerp(
-            u,
-            c(i0, j0, k0, l, fx, fy, fz, gw),
-            c(i1, j0, k0, l, fx - one, fy, fz, gw),
-        );
-        let x10 = lerp(
-            u,
-            c(i0, j1, k0, l, fx, fy - one, fz, gw),
-            c(i1, j1, k0, l, fx - one, fy - one, fz, gw),
-        );
-        let x01 = lerp(
-            u,
-            c(i0, j0, k1, l, fx, fy, fz - one, gw),
-            c(i1, j0, k1, l, fx - one, fy, fz - one, gw),
-        );
-        let x11 = lerp(
-            u,
-            c(i0, j1, k1, l, fx, fy - one, fz - one, gw),
-            c(i1, j1, k1, l, fx - one, fy - one, fz - one, gw),
-        );
+        let x00 = lerp(u, c(i0, j0, k0, l, fx, fy, fz, gw), c(i1, j0, k0, l, fx - one, fy, fz, gw));
+        let x10 = lerp(u, c(i0, j1, k0, l, fx, fy - one, fz, gw), c(i1, j1, k0, l, fx - one, fy - one, fz, gw));
+        let x01 = lerp(u, c(i0, j0, k1, l, fx, fy, fz - one, gw), c(i1, j0, k1, l, fx - one, fy, fz - one, gw));
+        let x11 =
+            lerp(u, c(i0, j1, k1, l, fx, fy - one, fz - one, gw), c(i1, j1, k1, l, fx - one, fy - one, fz - one, gw));
         lerp(s, lerp(v, x00, x10), lerp(v, x01, x11))
     };
     // The 4D corner gradients have length 2 (vs √2 in 3D); scale to the same range.

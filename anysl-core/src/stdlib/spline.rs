@@ -16,22 +16,12 @@ pub struct SplineBasis {
 impl SplineBasis {
     /// Catmull-Rom (interpolating; RSL's default).
     pub const CATMULL_ROM: Self = Self {
-        m: [
-            [-0.5, 1.5, -1.5, 0.5],
-            [1.0, -2.5, 2.0, -0.5],
-            [-0.5, 0.0, 0.5, 0.0],
-            [0.0, 1.0, 0.0, 0.0],
-        ],
+        m: [[-0.5, 1.5, -1.5, 0.5], [1.0, -2.5, 2.0, -0.5], [-0.5, 0.0, 0.5, 0.0], [0.0, 1.0, 0.0, 0.0]],
         step: 1,
     };
     /// Cubic Bézier.
     pub const BEZIER: Self = Self {
-        m: [
-            [-1.0, 3.0, -3.0, 1.0],
-            [3.0, -6.0, 3.0, 0.0],
-            [-3.0, 3.0, 0.0, 0.0],
-            [1.0, 0.0, 0.0, 0.0],
-        ],
+        m: [[-1.0, 3.0, -3.0, 1.0], [3.0, -6.0, 3.0, 0.0], [-3.0, 3.0, 0.0, 0.0], [1.0, 0.0, 0.0, 0.0]],
         step: 3,
     };
     /// Uniform cubic B-spline.
@@ -46,35 +36,16 @@ impl SplineBasis {
     };
     /// Hermite (knots are point, tangent, point, tangent, …).
     pub const HERMITE: Self = Self {
-        m: [
-            [2.0, 1.0, -2.0, 1.0],
-            [-3.0, -2.0, 3.0, -1.0],
-            [0.0, 1.0, 0.0, 0.0],
-            [1.0, 0.0, 0.0, 0.0],
-        ],
+        m: [[2.0, 1.0, -2.0, 1.0], [-3.0, -2.0, 3.0, -1.0], [0.0, 1.0, 0.0, 0.0], [1.0, 0.0, 0.0, 0.0]],
         step: 2,
     };
     /// Power basis (knots are polynomial coefficients).
-    pub const POWER: Self = Self {
-        m: [
-            [1.0, 0.0, 0.0, 0.0],
-            [0.0, 1.0, 0.0, 0.0],
-            [0.0, 0.0, 1.0, 0.0],
-            [0.0, 0.0, 0.0, 1.0],
-        ],
-        step: 4,
-    };
+    pub const POWER: Self =
+        Self { m: [[1.0, 0.0, 0.0, 0.0], [0.0, 1.0, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0], [0.0, 0.0, 0.0, 1.0]], step: 4 };
     /// Piecewise linear between the inner knots (first and last knot ignored, like
     /// Catmull-Rom).
-    pub const LINEAR: Self = Self {
-        m: [
-            [0.0, 0.0, 0.0, 0.0],
-            [0.0, 0.0, 0.0, 0.0],
-            [0.0, -1.0, 1.0, 0.0],
-            [0.0, 1.0, 0.0, 0.0],
-        ],
-        step: 1,
-    };
+    pub const LINEAR: Self =
+        Self { m: [[0.0, 0.0, 0.0, 0.0], [0.0, 0.0, 0.0, 0.0], [0.0, -1.0, 1.0, 0.0], [0.0, 1.0, 0.0, 0.0]], step: 1 };
 
     /// The basis called `name` in RSL (`"catmull-rom"`, `"bezier"`, `"bspline"`, `"hermite"`,
     /// `"power"`, `"linear"`).
@@ -115,9 +86,7 @@ where
 {
     let nseg = basis.segments(knots.len());
     if nseg == 0 {
-        return *knots
-            .first()
-            .expect("spline needs at least one knot (the RSL checker requires four)");
+        return *knots.first().expect("spline needs at least one knot (the RSL checker requires four)");
     }
     let xs = clamp(x, F::c(0.0), F::c(1.0)) * F::c(nseg as f64);
     let seg = xs.floor().min(F::c((nseg - 1) as f64));

@@ -41,14 +41,7 @@ pub struct RenderOptions {
 
 impl Default for RenderOptions {
     fn default() -> Self {
-        Self {
-            spp: 1,
-            threads: 0,
-            progress: false,
-            shadows: true,
-            seed: 0x5EED,
-            derivatives: true,
-        }
+        Self { spp: 1, threads: 0, progress: false, shadows: true, seed: 0x5EED, derivatives: true }
     }
 }
 
@@ -88,21 +81,14 @@ impl Progress {
             bar.set_message(label.to_string());
             bar
         });
-        Self {
-            bar,
-            start: Instant::now(),
-            shown: AtomicBool::new(false),
-        }
+        Self { bar, start: Instant::now(), shown: AtomicBool::new(false) }
     }
 
     fn tick(&self) {
         if let Some(bar) = &self.bar {
             bar.inc(1);
             if self.start.elapsed() >= PROGRESS_DELAY
-                && self
-                    .shown
-                    .compare_exchange(false, true, Ordering::Relaxed, Ordering::Relaxed)
-                    .is_ok()
+                && self.shown.compare_exchange(false, true, Ordering::Relaxed, Ordering::Relaxed).is_ok()
             {
                 bar.set_draw_target(ProgressDrawTarget::stderr());
             }
@@ -153,13 +139,7 @@ mod tests {
 
     #[test]
     fn sample_grid() {
-        let o = |spp| {
-            RenderOptions {
-                spp,
-                ..RenderOptions::default()
-            }
-            .grid()
-        };
+        let o = |spp| RenderOptions { spp, ..RenderOptions::default() }.grid();
         assert_eq!((o(0), o(1), o(2), o(4), o(5), o(9), o(16)), (1, 1, 1, 2, 2, 3, 4));
         assert_eq!(sample_offset(0, 1), (0.5, 0.5));
         assert_eq!(sample_offset(3, 2), (0.75, 0.75));
@@ -169,10 +149,7 @@ mod tests {
     #[test]
     fn single_thread_stays_on_the_calling_thread() {
         let me = std::thread::current().id();
-        let opts = RenderOptions {
-            threads: 1,
-            ..RenderOptions::default()
-        };
+        let opts = RenderOptions { threads: 1, ..RenderOptions::default() };
         let img = render_bands(8, 8, 2, &opts, "t", |y0, px| {
             assert_eq!(std::thread::current().id(), me);
             for (k, p) in px.iter_mut().enumerate() {

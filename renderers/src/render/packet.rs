@@ -73,15 +73,7 @@ where
 {
     let derivs = FilteredShading::flags(&scene.surfaces, opts.derivatives);
     measured(|stats| {
-        packet_render::<F, S, L, _>(
-            scene,
-            opts,
-            packet_lanes,
-            stats,
-            FilteredShading {
-                uses_derivatives: &derivs,
-            },
-        )
+        packet_render::<F, S, L, _>(scene, opts, packet_lanes, stats, FilteredShading { uses_derivatives: &derivs })
     })
 }
 
@@ -108,12 +100,7 @@ where
     K: Fn(&S, &Globals<F>) -> Option<SurfaceOutput<F>> + Sync,
 {
     let derivs = FilteredShading::flags(&scene.surfaces, opts.derivatives);
-    let how = KernelShading {
-        kernel,
-        fallback: FilteredShading {
-            uses_derivatives: &derivs,
-        },
-    };
+    let how = KernelShading { kernel, fallback: FilteredShading { uses_derivatives: &derivs } };
     render_packet_with::<F, S, L, _>(scene, opts, packet_lanes, how)
 }
 
@@ -169,15 +156,7 @@ where
     L: LightShader,
 {
     let derivs = FilteredShading::flags(&scene.surfaces, opts.derivatives);
-    packet_render::<F, S, L, _>(
-        scene,
-        opts,
-        packet_lanes,
-        None,
-        FilteredShading {
-            uses_derivatives: &derivs,
-        },
-    )
+    packet_render::<F, S, L, _>(scene, opts, packet_lanes, None, FilteredShading { uses_derivatives: &derivs })
 }
 
 /// The packet renderer; `stats` = (shading nanoseconds, shaded points) to measure into,
@@ -206,10 +185,7 @@ where
     let n = opts.grid();
     let weight = 1.0 / (n * n) as f32;
     let footprint = 1.0 / n as f32;
-    let tracer = Tracer {
-        scene,
-        shadows: opts.shadows,
-    };
+    let tracer = Tracer { scene, shadows: opts.shadows };
     let band_rows = 8u32.max(bh);
     let label = format!("packet {}×{} {}", bw, bh, F::NAME);
 

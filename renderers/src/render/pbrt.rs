@@ -82,20 +82,10 @@ where
     let n = opts.grid();
     let weight = 1.0 / (n * n) as f32;
     let footprint = 1.0 / n as f32;
-    let tracer = Tracer {
-        scene,
-        shadows: opts.shadows,
-    };
+    let tracer = Tracer { scene, shadows: opts.shadows };
     let derivs = FilteredShading::flags(&scene.surfaces, opts.derivatives);
-    let filtered = FilteredShading {
-        uses_derivatives: &derivs,
-    };
-    let passive = Passive {
-        scene,
-        params: &params,
-        shadows: opts.shadows,
-        derivs: &derivs,
-    };
+    let filtered = FilteredShading { uses_derivatives: &derivs };
+    let passive = Passive { scene, params: &params, shadows: opts.shadows, derivs: &derivs };
     let label = match integrator {
         Integrator::Passive => "pbrt passive",
         Integrator::Active => "pbrt active",
@@ -133,13 +123,7 @@ fn li_active<S: SurfaceShader, L: LightShader>(
     let dirs = [d];
     let hit = scene.intersect(o, d, 0.0, f32::INFINITY);
     let hits = [hit.map(|h| scene.surface_hit(&h, o, d, Some(diff))).unwrap_or_default()];
-    let lanes = Lanes {
-        hits: &hits,
-        dirs: &dirs,
-        active: 1,
-        hit: u32::from(hit.is_some()),
-        camera: true,
-    };
+    let lanes = Lanes { hits: &hits, dirs: &dirs, active: 1, hit: u32::from(hit.is_some()), camera: true };
     let c = shade_lanes_by::<f32, S, L, _>(tracer, &lanes, Depth::default(), how);
     Vec3A::new(c.r, c.g, c.b)
 }
@@ -170,11 +154,7 @@ impl<S: SurfaceShader, L: LightShader> Passive<'_, S, L> {
         let scene = self.scene;
         let tmin = if camera && layer == 0 { 0.0 } else { ray_epsilon(o) };
         let Some(hit) = scene.intersect(o, d, tmin, f32::INFINITY) else {
-            return if camera && !scene.sky.visible_to_camera {
-                Vec3A::ZERO
-            } else {
-                Vec3A::from(scene.sky.color(d))
-            };
+            return if camera && !scene.sky.visible_to_camera { Vec3A::ZERO } else { Vec3A::from(scene.sky.color(d)) };
         };
         let sh = scene.surface_hit(&hit, o, d, diff);
         let (base, opacity) = self.material(&sh);
@@ -196,24 +176,14 @@ impl<S: SurfaceShader, L: LightShader> Passive<'_, S, L> {
     fn material(&self, sh: &SurfaceHit) -> (Vec3A, Vec3A) {
         let shader = &self.scene.surfaces[sh.surface as usize];
         if self.derivs[sh.surface as usize] {
-            let mut ctx = ProbeContext {
-                globals: gather_globals::<Dual<f32>>(std::slice::from_ref(sh), 1, 0),
-            };
+            let mut ctx = ProbeContext { globals: gather_globals::<Dual<f32>>(std::slice::from_ref(sh), 1, 0) };
             let out = shader.shade(&mut ctx, &mut Exec::<Dual<f32>>::new());
             let (ci, oi) = (out.Ci, out.Oi);
-            (
-                Vec3A::new(ci.r.val, ci.g.val, ci.b.val),
-                Vec3A::new(oi.r.val, oi.g.val, oi.b.val),
-            )
+            (Vec3A::new(ci.r.val, ci.g.val, ci.b.val), Vec3A::new(oi.r.val, oi.g.val, oi.b.val))
         } else {
-            let mut ctx = ProbeContext {
-                globals: gather_globals::<f32>(std::slice::from_ref(sh), 1, 0),
-            };
+            let mut ctx = ProbeContext { globals: gather_globals::<f32>(std::slice::from_ref(sh), 1, 0) };
             let out = shader.shade(&mut ctx, &mut Exec::<f32>::new());
-            (
-                Vec3A::new(out.Ci.r, out.Ci.g, out.Ci.b),
-                Vec3A::new(out.Oi.r, out.Oi.g, out.Oi.b),
-            )
+            (Vec3A::new(out.Ci.r, out.Ci.g, out.Ci.b), Vec3A::new(out.Oi.r, out.Oi.g, out.Oi.b))
         }
     }
 

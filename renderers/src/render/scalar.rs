@@ -36,10 +36,7 @@ where
     S: SurfaceShader,
     L: LightShader,
 {
-    assert!(
-        P::LANES == 1 && D::LANES == 1,
-        "the scalar renderer shades one point at a time"
-    );
+    assert!(P::LANES == 1 && D::LANES == 1, "the scalar renderer shades one point at a time");
     let cam = &scene.camera;
     let (width, height) = (cam.width(), cam.height());
     // Shader metadata is looked up once per render, not per ray.
@@ -47,10 +44,7 @@ where
     let n = opts.grid();
     let weight = 1.0 / (n * n) as f32;
     let footprint = 1.0 / n as f32;
-    let tracer = Tracer {
-        scene,
-        shadows: opts.shadows,
-    };
+    let tracer = Tracer { scene, shadows: opts.shadows };
     let label = format!("scalar {}", P::NAME);
 
     render_bands(width, height, 1, opts, &label, |y, row| {
@@ -63,24 +57,12 @@ where
                 let dirs = [d];
                 let c = match scene.intersect(o, d, 0.0, f32::INFINITY) {
                     None => {
-                        let lanes = Lanes {
-                            hits: &[Default::default()],
-                            dirs: &dirs,
-                            active: 1,
-                            hit: 0,
-                            camera: true,
-                        };
+                        let lanes = Lanes { hits: &[Default::default()], dirs: &dirs, active: 1, hit: 0, camera: true };
                         to_rgb(shade_lanes::<P, S, L>(tracer, &lanes, Depth::default()))
                     }
                     Some(h) => {
                         let hits = [scene.surface_hit(&h, o, d, Some((ddx, ddy)))];
-                        let lanes = Lanes {
-                            hits: &hits,
-                            dirs: &dirs,
-                            active: 1,
-                            hit: 1,
-                            camera: true,
-                        };
+                        let lanes = Lanes { hits: &hits, dirs: &dirs, active: 1, hit: 1, camera: true };
                         if wants_derivs[hits[0].surface as usize] {
                             to_rgb(shade_lanes::<D, S, L>(tracer, &lanes, Depth::default()))
                         } else {

@@ -22,10 +22,7 @@ impl SurfaceShader for Lambert {
             e.update(&mut sum, |s| s + cl * l.normalize().dot(nf));
         });
         let tint = Color::from_array(self.tint);
-        SurfaceOutput {
-            Ci: g.Cs * tint * sum * F::c(self.Kd),
-            Oi: g.Os,
-        }
+        SurfaceOutput { Ci: g.Cs * tint * sum * F::c(self.Kd), Oi: g.Os }
     }
 }
 
@@ -40,10 +37,7 @@ anysl_core::shader_params! {
 impl SurfaceShader for Screen {
     fn shade<F: ShadingFloat, C: ShadingContext<F>>(&self, _ctx: &mut C, _e: &mut Exec<F>) -> SurfaceOutput<F> {
         let o = F::c(self.opacity);
-        SurfaceOutput {
-            Ci: Color::from_array(self.colour) * o,
-            Oi: Color::splat(o),
-        }
+        SurfaceOutput { Ci: Color::from_array(self.colour) * o, Oi: Color::splat(o) }
     }
 }
 
@@ -61,10 +55,7 @@ impl SurfaceShader for Mirror {
         let i = g.I.normalize();
         let r = i - nf * (F::c(2.0) * i.dot(nf));
         let c = ctx.trace(e, g.P, r);
-        SurfaceOutput {
-            Ci: c * F::c(self.Kr),
-            Oi: g.Os,
-        }
+        SurfaceOutput { Ci: c * F::c(self.Kr), Oi: g.Os }
     }
 }
 
@@ -79,10 +70,7 @@ impl SurfaceShader for SDerivs {
     fn shade<F: ShadingFloat, C: ShadingContext<F>>(&self, ctx: &mut C, _e: &mut Exec<F>) -> SurfaceOutput<F> {
         let g = *ctx.globals();
         let k = F::c(self.scale);
-        SurfaceOutput {
-            Ci: Color::new(g.s.dx() * k, g.s.dy() * k, g.s.value()),
-            Oi: Color::c(1.0, 1.0, 1.0),
-        }
+        SurfaceOutput { Ci: Color::new(g.s.dx() * k, g.s.dy() * k, g.s.value()), Oi: Color::c(1.0, 1.0, 1.0) }
     }
 }
 
@@ -129,10 +117,7 @@ impl TestSurface {
         Self::Lambert(Lambert { Kd: kd, tint })
     }
     pub fn screen(opacity: f64) -> Self {
-        Self::Screen(Screen {
-            opacity,
-            ..Screen::default()
-        })
+        Self::Screen(Screen { opacity, ..Screen::default() })
     }
 }
 
@@ -147,34 +132,20 @@ anysl_core::shader_params! {
 impl LightShader for TestLight {
     fn light<F: ShadingFloat>(&self, _e: &mut Exec<F>, ps: Vec3<F>) -> LightOutput<F> {
         let (l, lit) = illuminate(ps, Vec3::from_array(self.from), None);
-        LightOutput {
-            cl: Color::from_array(self.intensity),
-            l,
-            lit,
-            emission: Emission::Local,
-        }
+        LightOutput { cl: Color::from_array(self.intensity), l, lit, emission: Emission::Local }
     }
 }
 
 impl TestLight {
     pub fn at(from: [f64; 3], intensity: f64) -> Self {
-        Self {
-            from,
-            intensity: [intensity; 3],
-        }
+        Self { from, intensity: [intensity; 3] }
     }
 }
 
 /// The two point lights of the shading workload (§3), without the ambient term.
 pub fn workload_lights() -> Vec<TestLight> {
     vec![
-        TestLight {
-            from: [-3.0, 4.0, 5.0],
-            intensity: [0.9, 0.85, 0.8],
-        },
-        TestLight {
-            from: [4.0, -1.5, 3.0],
-            intensity: [0.25, 0.3, 0.45],
-        },
+        TestLight { from: [-3.0, 4.0, 5.0], intensity: [0.9, 0.85, 0.8] },
+        TestLight { from: [4.0, -1.5, 3.0], intensity: [0.25, 0.3, 0.45] },
     ]
 }

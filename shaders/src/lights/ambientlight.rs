@@ -22,11 +22,6 @@ impl LightShader for AmbientLight {
     #[inline(always)]
     fn light<F: ShadingFloat>(&self, _e: &mut Exec<F>, _ps: Vec3<F>) -> LightOutput<F> {
         let cl = Color::from_array(self.lightcolor) * F::c(self.intensity);
-        LightOutput {
-            cl,
-            l: Vec3::zero(),
-            lit: F::Mask::splat(true),
-            emission: Emission::Ambient,
-        }
+        LightOutput { cl, l: Vec3::zero(), lit: F::Mask::splat(true), emission: Emission::Ambient }
     }
 }

@@ -26,11 +26,6 @@ impl LightShader for DistantLight {
     fn light<F: ShadingFloat>(&self, _e: &mut Exec<F>, _ps: Vec3<F>) -> LightOutput<F> {
         let (l, lit) = solar(Vec3::from_array(self.to) - Vec3::from_array(self.from));
         let cl = Color::from_array(self.lightcolor) * F::c(self.intensity);
-        LightOutput {
-            cl,
-            l,
-            lit,
-            emission: Emission::Distant,
-        }
+        LightOutput { cl, l, lit, emission: Emission::Distant }
     }
 }

@@ -37,11 +37,6 @@ impl LightShader for PointLight {
         } else {
             c / l.dot(l).pow(F::c(self.falloff * 0.5))
         };
-        LightOutput {
-            cl,
-            l,
-            lit,
-            emission: Emission::Local,
-        }
+        LightOutput { cl, l, lit, emission: Emission::Local }
     }
 }

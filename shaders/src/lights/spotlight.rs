@@ -47,11 +47,6 @@ impl LightShader for SpotLight {
         let beam = cosangle.max(zero).pow(F::c(self.beamdistribution));
         let atten = beam / len2 * smoothstep(cosoutside, cosinside, cosangle);
         let cl = Color::from_array(self.lightcolor) * (F::c(self.intensity) * atten);
-        LightOutput {
-            cl,
-            l,
-            lit,
-            emission: Emission::Local,
-        }
+        LightOutput { cl, l, lit, emission: Emission::Local }
     }
 }

@@ -68,17 +68,8 @@ impl SurfaceShader for Brick {
         let (inbrick, cbrick) = self.pattern(g.s, g.t);
         let mortar = Color::from_array(self.Cmortar);
         let ct = mortar + (cbrick - mortar) * inbrick;
-        let finish = Finish {
-            ka: self.Ka,
-            kd: self.Kd,
-            ks: 0.0,
-            roughness: 1.0,
-            specularcolor: [0.0; 3],
-        };
+        let finish = Finish { ka: self.Ka, kd: self.Kd, ks: 0.0, roughness: 1.0, specularcolor: [0.0; 3] };
         let l = finish.light_sums(ctx, e, nf, v);
-        SurfaceOutput {
-            Ci: g.Os * finish.matte_part(ct, &l),
-            Oi: g.Os,
-        }
+        SurfaceOutput { Ci: g.Os * finish.matte_part(ct, &l), Oi: g.Os }
     }
 }

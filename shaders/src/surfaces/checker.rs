@@ -33,13 +33,7 @@ impl Checker {
     /// The illumination coefficients.
     #[inline(always)]
     pub(crate) fn finish(&self) -> Finish {
-        Finish {
-            ka: self.Ka,
-            kd: self.Kd,
-            ks: self.Ks,
-            roughness: self.roughness,
-            specularcolor: self.specularcolor,
-        }
+        Finish { ka: self.Ka, kd: self.Kd, ks: self.Ks, roughness: self.roughness, specularcolor: self.specularcolor }
     }
 
     /// The pattern alone: the weight of `blackcolor` at (s, t), in [0, 1] (0 or 1 without

@@ -73,9 +73,6 @@ impl SurfaceShader for Glass {
                 e.update(&mut ci, |ci| ci + c * wt);
             },
         );
-        SurfaceOutput {
-            Ci: ci,
-            Oi: Color::splat(F::c(1.0)),
-        }
+        SurfaceOutput { Ci: ci, Oi: Color::splat(F::c(1.0)) }
     }
 }

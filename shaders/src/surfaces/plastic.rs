@@ -24,13 +24,7 @@ impl Plastic {
     /// The illumination coefficients.
     #[inline(always)]
     pub(crate) fn finish(&self) -> Finish {
-        Finish {
-            ka: self.Ka,
-            kd: self.Kd,
-            ks: self.Ks,
-            roughness: self.roughness,
-            specularcolor: self.specularcolor,
-        }
+        Finish { ka: self.Ka, kd: self.Kd, ks: self.Ks, roughness: self.roughness, specularcolor: self.specularcolor }
     }
 }
 

@@ -40,10 +40,7 @@ impl SurfaceShader for Screen {
     #[inline(always)]
     fn shade<F: ShadingFloat, C: ShadingContext<F>>(&self, ctx: &mut C, e: &mut Exec<F>) -> SurfaceOutput<F> {
         let g = *ctx.globals();
-        let mut out = SurfaceOutput {
-            Ci: Color::zero(),
-            Oi: Color::zero(),
-        };
+        let mut out = SurfaceOutput { Ci: Color::zero(), Oi: Color::zero() };
         let finish = Finish {
             ka: self.Ka,
             kd: self.Kd,

@@ -55,11 +55,7 @@ impl Starball {
         let (ex, ey) = (F::c(vx - rmax), F::c(vy));
         let inside = (ex * qy - ey * (qx - F::c(rmax))).ge(F::c(0.0));
         let in_band = d.y.abs().le(F::c(self.bandwidth));
-        let body = Color::select(
-            in_band,
-            Color::from_array(self.bandcolor),
-            Color::from_array(self.ballcolor),
-        );
+        let body = Color::select(in_band, Color::from_array(self.bandcolor), Color::from_array(self.ballcolor));
         Color::select(inside, Color::from_array(self.starcolor), body)
     }
 }

@@ -82,9 +82,6 @@ impl SurfaceShader for Venus {
         let amb = ambient(ctx, e);
         let diff = diffuse(ctx, e, nf);
         let light = amb * F::c(self.Ka) + diff * F::c(self.Kd);
-        SurfaceOutput {
-            Ci: g.Os * light * ct,
-            Oi: g.Os,
-        }
+        SurfaceOutput { Ci: g.Os * light * ct, Oi: g.Os }
     }
 }

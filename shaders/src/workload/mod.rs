@@ -75,10 +75,7 @@ impl WorkloadShader {
     /// Every workload shader, in the order of [`WorkloadShader::NAMES`].
     #[must_use]
     pub fn all() -> Vec<Self> {
-        Self::NAMES
-            .iter()
-            .map(|n| Self::by_name(n).expect("every listed name resolves"))
-            .collect()
+        Self::NAMES.iter().map(|n| Self::by_name(n).expect("every listed name resolves")).collect()
     }
 
     /// The workload's name of the shader (`plastic`, …; also the reference file's stem).

@@ -9,9 +9,7 @@ use super::scene::SIZE;
 /// from `shared/bench/ref/` together with the workload definition).
 #[must_use]
 pub fn reference_dir() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("assets")
-        .join("workload_ref")
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("assets").join("workload_ref")
 }
 
 /// The element types the reader understands.
@@ -30,10 +28,7 @@ fn parse_npy(bytes: &[u8]) -> Result<(Dtype, Vec<usize>, &[u8]), String> {
     }
     let (header_len, start) = match bytes[6] {
         1 => (usize::from(u16::from_le_bytes([bytes[8], bytes[9]])), 10),
-        2 | 3 if bytes.len() >= 12 => (
-            u32::from_le_bytes([bytes[8], bytes[9], bytes[10], bytes[11]]) as usize,
-            12,
-        ),
+        2 | 3 if bytes.len() >= 12 => (u32::from_le_bytes([bytes[8], bytes[9], bytes[10], bytes[11]]) as usize, 12),
         v => return Err(format!("unsupported .npy version {v}")),
     };
     let header = bytes
@@ -41,9 +36,7 @@ fn parse_npy(bytes: &[u8]) -> Result<(Dtype, Vec<usize>, &[u8]), String> {
         .and_then(|h| std::str::from_utf8(h).ok())
         .ok_or("truncated or non-ASCII .npy header")?;
     let field = |key: &str| -> Result<&str, String> {
-        let at = header
-            .find(&format!("'{key}'"))
-            .ok_or_else(|| format!("no '{key}' in .npy header {header:?}"))?;
+        let at = header.find(&format!("'{key}'")).ok_or_else(|| format!("no '{key}' in .npy header {header:?}"))?;
         let rest = header[at + key.len() + 2..].trim_start();
         Ok(rest.strip_prefix(':').unwrap_or(rest).trim_start())
     };
@@ -86,10 +79,7 @@ pub fn read_npy_f32(path: &Path) -> Result<(Vec<usize>, Vec<f32>), String> {
     if dtype != Dtype::F32 {
         return Err(format!("{}: expected a float32 array", path.display()));
     }
-    let values = data
-        .chunks_exact(4)
-        .map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]]))
-        .collect();
+    let values = data.chunks_exact(4).map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]])).collect();
     Ok((shape, values))
 }
 
@@ -153,8 +143,5 @@ pub fn image_error(image: &[f32], reference: &[f32]) -> ImageError {
         max = max.max(worst);
         over += usize::from(worst > 1e-3);
     }
-    ImageError {
-        max_abs_err: max,
-        pixels_over_1e3: over,
-    }
+    ImageError { max_abs_err: max, pixels_over_1e3: over }
 }

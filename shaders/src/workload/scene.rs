@@ -127,12 +127,7 @@ impl WorkloadScene {
             let last = *a.last().expect("the sphere is in view");
             a.resize(padded, last);
         }
-        Self {
-            n_hit,
-            pixels,
-            f32s,
-            f64s,
-        }
+        Self { n_hit, pixels, f32s, f64s }
     }
 
     /// Number of hit points (183 020).
@@ -198,11 +193,7 @@ impl WorkloadScene {
         let seeded = |v: Vec3<F>, dx: usize, dy: usize| {
             if F::HAS_DERIVS {
                 let (a, b) = (self.load3::<F>(dx, i), self.load3::<F>(dy, i));
-                Vec3::new(
-                    v.x.with_derivs(a.x, b.x),
-                    v.y.with_derivs(a.y, b.y),
-                    v.z.with_derivs(a.z, b.z),
-                )
+                Vec3::new(v.x.with_derivs(a.x, b.x), v.y.with_derivs(a.y, b.y), v.z.with_derivs(a.z, b.z))
             } else {
                 v
             }
@@ -267,13 +258,7 @@ impl WorkloadScene {
                 }
             }
         }
-        shader.visit(Job::<F> {
-            scene: self,
-            lights,
-            start,
-            out,
-            _f: core::marker::PhantomData,
-        });
+        shader.visit(Job::<F> { scene: self, lights, start, out, _f: core::marker::PhantomData });
     }
 
     /// Shades every point with `F` on the calling thread; returns `Ci` as three padded arrays.
@@ -310,11 +295,7 @@ impl WorkloadScene {
                 out
             }
         }
-        shader.visit(Job::<F> {
-            scene: self,
-            lights,
-            _f: core::marker::PhantomData,
-        })
+        shader.visit(Job::<F> { scene: self, lights, _f: core::marker::PhantomData })
     }
 
     /// Scatters per-hit colours into a 512×512×3 image (`[row][col][channel]`, black

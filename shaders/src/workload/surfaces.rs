@@ -80,10 +80,7 @@ impl SurfaceShader for WorkloadChecker {
     fn shade<F: ShadingFloat, C: ShadingContext<F>>(&self, ctx: &mut C, e: &mut Exec<F>) -> SurfaceOutput<F> {
         let p = ctx.globals().P * F::c(self.frequency);
         // The cell sum in integer lanes (wrapping, as int32 would), then its low bit.
-        let q =
-            p.x.floor_bits()
-                .wrapping_add(p.y.floor_bits())
-                .wrapping_add(p.z.floor_bits());
+        let q = p.x.floor_bits().wrapping_add(p.y.floor_bits()).wrapping_add(p.z.floor_bits());
         let one = F::Bits::splat(1);
         let odd = (q & one).eq_mask(one);
         let cs = Color::select(odd, Color::from_array(self.oddcolor), Color::from_array(self.evencolor));
