@@ -9,6 +9,8 @@
 //!   shaders as ordinary generic anysl shaders (the Table-1 `plastic`, `checker`, `wood` and
 //!   `granite` differ: faceforward, (s, t) checks, clamped `snoise`, roughness 0.1), and
 //!   [`WorkloadShader`], their closed set by workload name.
+//! - [`WorkloadShader::sl_source`]: the same four shaders as ordinary `.sl` shaders
+//!   (`shaders/rsl/workload/`, embedded), for the interpreter and the JIT.
 //! - [`lights`]: the §3 lights (the same as [`crate::table1_lights`]).
 //! - [`reference`]: the reference arrays and the §6 error metrics.
 //!
@@ -86,6 +88,32 @@ impl WorkloadShader {
             Self::Checker(_) => "checker",
             Self::Wood(_) => "wood",
             Self::Granite(_) => "granite",
+        }
+    }
+
+    /// The shader as an ordinary RenderMan `.sl` surface shader (`shaders/rsl/workload/<name>.sl`,
+    /// embedded so that it compiles without the repository; no `#include`), named
+    /// `workload_<name>`, with this shader's parameters and defaults and the §3 light loop
+    /// written out.
+    #[must_use]
+    pub fn sl_source(&self) -> &'static str {
+        match self {
+            Self::Plastic(_) => include_str!("../../rsl/workload/plastic.sl"),
+            Self::Checker(_) => include_str!("../../rsl/workload/checker.sl"),
+            Self::Wood(_) => include_str!("../../rsl/workload/wood.sl"),
+            Self::Granite(_) => include_str!("../../rsl/workload/granite.sl"),
+        }
+    }
+
+    /// The name [`WorkloadShader::sl_source`] goes by in diagnostics: its path in the
+    /// repository, `shaders/rsl/workload/<name>.sl`.
+    #[must_use]
+    pub fn sl_file_name(&self) -> &'static str {
+        match self {
+            Self::Plastic(_) => "shaders/rsl/workload/plastic.sl",
+            Self::Checker(_) => "shaders/rsl/workload/checker.sl",
+            Self::Wood(_) => "shaders/rsl/workload/wood.sl",
+            Self::Granite(_) => "shaders/rsl/workload/granite.sl",
         }
     }
 }

@@ -242,23 +242,88 @@ impl WorkloadScene {
             type Output = ();
             #[inline(never)]
             fn visit<S: SurfaceShader>(self, shader: &S) {
-                let [r, g, b] = self.out;
-                let len = r.len();
-                assert!(len % F::LANES == 0 && g.len() == len && b.len() == len);
-                assert!(self.start + len <= self.scene.padded_len());
-                let mut k = 0;
-                while k < len {
-                    let mut ctx = PointContext::new(self.scene.globals::<F>(self.start + k), self.lights);
-                    let mut e = Exec::<F>::new();
-                    let ci = shader.shade(&mut ctx, &mut e).Ci;
-                    ci.r.store(&mut r[k..]);
-                    ci.g.store(&mut g[k..]);
-                    ci.b.store(&mut b[k..]);
-                    k += F::LANES;
-                }
+                self.scene.shade_surface::<F, S>(shader, self.lights, self.start, self.out);
             }
         }
         shader.visit(Job::<F> { scene: self, lights, start, out, _f: core::marker::PhantomData });
+    }
+
+    /// [`WorkloadScene::shade`] for any surface shader (an interpreted or JIT-compiled `.sl`
+    /// shader, …): the same globals and lights, one `SurfaceShader::shade` per `F::LANES`
+    /// points.
+    ///
+    /// # Panics
+    /// When the three outputs differ in length, the length is not a multiple of `F::LANES` or
+    /// the range passes the padded inputs.
+    #[inline(always)]
+    pub fn shade_surface<F: ShadingFloat, S: SurfaceShader>(
+        &self,
+        shader: &S,
+        lights: &[Light],
+        start: usize,
+        out: [&mut [f32]; 3],
+    ) {
+        let [r, g, b] = out;
+        let len = self.check_range::<F>(start, [r.len(), g.len(), b.len()]);
+        let mut k = 0;
+        while k < len {
+            let mut ctx = PointContext::new(self.globals::<F>(start + k), lights);
+            let mut e = Exec::<F>::new();
+            let ci = shader.shade(&mut ctx, &mut e).Ci;
+            ci.r.store(&mut r[k..]);
+            ci.g.store(&mut g[k..]);
+            ci.b.store(&mut b[k..]);
+            k += F::LANES;
+        }
+    }
+
+    /// [`WorkloadScene::shade`] for a shader that shades many chunks of `F::LANES` points per
+    /// call (the batched interpreter): `shade_batch(ctxs, outs)` receives up to `chunks`
+    /// contexts of consecutive points and writes each chunk's output to `outs` (as long as
+    /// `ctxs`). The contexts and the output buffer are allocated once per call, not per batch.
+    ///
+    /// # Panics
+    /// As [`WorkloadScene::shade_surface`], and when `chunks` is 0.
+    pub fn shade_batched<F: ShadingFloat>(
+        &self,
+        lights: &[Light],
+        start: usize,
+        out: [&mut [f32]; 3],
+        chunks: usize,
+        mut shade_batch: impl FnMut(&mut [PointContext<'_, F, Light>], &mut [SurfaceOutput<F>]),
+    ) {
+        assert!(chunks > 0, "a batch needs at least one chunk");
+        let [r, g, b] = out;
+        let len = self.check_range::<F>(start, [r.len(), g.len(), b.len()]);
+        let mut ctxs = Vec::with_capacity(chunks);
+        let mut outs = vec![SurfaceOutput { Ci: Color::<F>::zero(), Oi: Color::zero() }; chunks];
+        let mut k = 0;
+        while k < len {
+            let n = chunks.min((len - k) / F::LANES);
+            ctxs.clear();
+            ctxs.extend((0..n).map(|c| PointContext::new(self.globals::<F>(start + k + c * F::LANES), lights)));
+            shade_batch(&mut ctxs, &mut outs[..n]);
+            for (c, o) in outs[..n].iter().enumerate() {
+                let (at, col) = (k + c * F::LANES, o.Ci);
+                col.r.store(&mut r[at..]);
+                col.g.store(&mut g[at..]);
+                col.b.store(&mut b[at..]);
+            }
+            k += n * F::LANES;
+        }
+    }
+
+    /// Checks an output range of the shading calls; returns its length.
+    #[inline(always)]
+    fn check_range<F: ShadingFloat>(&self, start: usize, lens: [usize; 3]) -> usize {
+        let len = lens[0];
+        assert!(
+            len.is_multiple_of(F::LANES) && lens[1] == len && lens[2] == len,
+            "outputs of {lens:?} points for {} lanes",
+            F::LANES
+        );
+        assert!(start + len <= self.padded_len(), "points {start}..{} of {}", start + len, self.padded_len());
+        len
     }
 
     /// Shades every point with `F` on the calling thread; returns `Ci` as three padded arrays.

@@ -816,26 +816,48 @@ impl Shader for InterpShader {
     }
 }
 
+impl InterpShader {
+    /// [`SurfaceShader::shade`] for a batch of chunks at once: chunk `k` has the globals and
+    /// lights of `ctxs[k]`, the live lanes `masks[k]`, and its output goes to `out[k]`. The
+    /// ops are decoded once per batch instead of once per chunk, which is what makes the
+    /// interpreter fast (a few hundred points per batch; see `anysl bench interp`).
+    ///
+    /// # Panics
+    /// When `masks` or `out` is shorter than `ctxs`.
+    pub fn shade_batch<F: ShadingFloat, C: ShadingContext<F>>(
+        &self,
+        ctxs: &mut [C],
+        masks: &[F::Mask],
+        out: &mut [SurfaceOutput<F>],
+    ) {
+        let n = ctxs.len();
+        assert!(masks.len() >= n && out.len() >= n, "{n} chunks, {} masks, {} outputs", masks.len(), out.len());
+        let fr = run_batch::<F, C>(&self.program, &self.values, ctxs, &masks[..n]);
+        for (k, o) in out[..n].iter_mut().enumerate() {
+            *o = surface_output(&fr, &self.program, k);
+        }
+        release(fr);
+    }
+}
+
 impl SurfaceShader for InterpShader {
     fn shade<F: ShadingFloat, C: ShadingContext<F>>(&self, ctx: &mut C, e: &mut Exec<F>) -> SurfaceOutput<F> {
         let p = &*self.program;
         let fr = run_batch::<F, C>(p, &self.values, std::slice::from_mut(ctx), &[e.mask()]);
-        let read3 = |g: Global, dflt: Color<F>| match p.global_loc(g) {
-            Some(Loc::Num { off, .. }) => fr.color(off, 0),
-            _ => dflt,
-        };
-        let os = ctx_os(&fr, p);
-        let out = SurfaceOutput { Ci: read3(Global::Ci, Color::zero()), Oi: read3(Global::Oi, os) };
+        let out = surface_output(&fr, p, 0);
         release(fr);
         out
     }
 }
 
-fn ctx_os<F: ShadingFloat>(fr: &Frame<F>, p: &Program) -> Color<F> {
-    match p.global_loc(Global::Os) {
-        Some(Loc::Num { off, .. }) => fr.color(off, 0),
-        _ => Color::splat(F::c(1.0)),
-    }
+/// `Ci` and `Oi` of chunk `k` after a surface shader ran (`Oi` defaults to `Os`, `Os` to 1).
+fn surface_output<F: ShadingFloat>(fr: &Frame<F>, p: &Program, k: usize) -> SurfaceOutput<F> {
+    let read3 = |g: Global| match p.global_loc(g) {
+        Some(Loc::Num { off, .. }) => Some(fr.color(off, k)),
+        _ => None,
+    };
+    let os = read3(Global::Os).unwrap_or_else(|| Color::splat(F::c(1.0)));
+    SurfaceOutput { Ci: read3(Global::Ci).unwrap_or_else(Color::zero), Oi: read3(Global::Oi).unwrap_or(os) }
 }
 
 impl DisplacementShader for InterpShader {
