@@ -30,12 +30,13 @@ pub type IllumFn = unsafe extern "C" fn(
     env: *mut u8,
 );
 
-/// A compiled shader: `(globals, outputs, mask, ctx, host table)`; see [`GLOBAL_ORDER`] and
-/// [`OUTPUT_ORDER`] for the buffer layouts.
+/// A compiled shader: `(globals, outputs, mask, ctx, host table)`. `globals` points at the
+/// renderer's `Globals<F>` (read at the offsets of [`GlobalsLayout`]); see [`OUTPUT_ORDER`]
+/// for the output buffer.
 pub type ShadeFn =
     unsafe extern "C" fn(globals: *const f32, out: *mut f32, mask: *const u32, ctx: *mut c_void, host: *const usize);
 
-/// Order of the globals in the input buffer (one value per component).
+/// The globals and the number of their first component (see [`GlobalsLayout`]).
 pub const GLOBAL_ORDER: [(anysl_rsl::ir::Global, usize); 15] = {
     use anysl_rsl::ir::Global as G;
     [
@@ -56,8 +57,73 @@ pub const GLOBAL_ORDER: [(anysl_rsl::ir::Global, usize); 15] = {
         (G::Dv, 32),
     ]
 };
-/// Number of values in the globals buffer.
+/// Number of global components.
 pub const GLOBAL_VALUES: usize = 33;
+
+/// Where the compiled code finds the globals: the renderer's own [`anysl_core::Globals`]
+/// struct, read in place (no copy per call). `comp[k]` is the offset in floats of component
+/// `k` (numbered as in [`GLOBAL_ORDER`]) — of its value part for dual numbers, whose ∂/∂x
+/// and ∂/∂y lie `dual[0]` and `dual[1]` floats further.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct GlobalsLayout {
+    /// Float offset of each component's value.
+    pub comp: [u32; GLOBAL_VALUES],
+    /// Float offsets of ∂/∂x and ∂/∂y from the value (dual numbers only).
+    pub dual: [u32; 2],
+}
+
+impl GlobalsLayout {
+    /// The layout of `Globals<F>` as the Rust compiler laid it out.
+    #[must_use]
+    pub fn of<F: JitFloat>() -> Self {
+        use anysl_core::{Color, Globals, Vec3};
+        use core::mem::offset_of;
+        let fl = |bytes: usize| -> u32 {
+            debug_assert!(bytes % 4 == 0);
+            u32::try_from(bytes / 4).expect("small offsets")
+        };
+        let v3 = [offset_of!(Vec3<F>, x), offset_of!(Vec3<F>, y), offset_of!(Vec3<F>, z)];
+        let c3 = [offset_of!(Color<F>, r), offset_of!(Color<F>, g), offset_of!(Color<F>, b)];
+        let triples = [
+            offset_of!(Globals<F>, P),
+            offset_of!(Globals<F>, N),
+            offset_of!(Globals<F>, Ng),
+            offset_of!(Globals<F>, I),
+            offset_of!(Globals<F>, E),
+            offset_of!(Globals<F>, dPdu),
+            offset_of!(Globals<F>, dPdv),
+        ];
+        let singles = [
+            offset_of!(Globals<F>, s),
+            offset_of!(Globals<F>, t),
+            offset_of!(Globals<F>, u),
+            offset_of!(Globals<F>, v),
+            offset_of!(Globals<F>, du),
+            offset_of!(Globals<F>, dv),
+        ];
+        let mut comp = [0u32; GLOBAL_VALUES];
+        let mut k = 0;
+        for base in triples {
+            for o in v3 {
+                comp[k] = fl(base + o);
+                k += 1;
+            }
+        }
+        for base in [offset_of!(Globals<F>, Cs), offset_of!(Globals<F>, Os)] {
+            for o in c3 {
+                comp[k] = fl(base + o);
+                k += 1;
+            }
+        }
+        for base in singles {
+            comp[k] = fl(base);
+            k += 1;
+        }
+        debug_assert_eq!(k, GLOBAL_VALUES);
+        let dual = if F::DUAL { F::dual_offsets().map(fl) } else { [0, 0] };
+        Self { comp, dual }
+    }
+}
 /// Order of the outputs: `Ci`, `Oi` (surface), `P`, `N` (displacement).
 pub const OUTPUT_ORDER: [(anysl_rsl::ir::Global, usize); 4] = {
     use anysl_rsl::ir::Global as G;
@@ -94,6 +160,11 @@ pub unsafe trait JitFloat: ShadingFloat {
     const BASE_LANES: usize;
     /// A dual number.
     const DUAL: bool;
+    /// Byte offsets of ∂/∂x and ∂/∂y inside a value (dual numbers; `[0, 0]` otherwise).
+    #[must_use]
+    fn dual_offsets() -> [usize; 2] {
+        [0, 0]
+    }
     /// Reads a value.
     ///
     /// # Safety
@@ -176,6 +247,12 @@ where
     const STRIDE: usize = 3 * B::STRIDE;
     const BASE_LANES: usize = B::BASE_LANES;
     const DUAL: bool = true;
+    fn dual_offsets() -> [usize; 2] {
+        [
+            core::mem::offset_of!(Dual<B>, ddx) - core::mem::offset_of!(Dual<B>, val),
+            core::mem::offset_of!(Dual<B>, ddy) - core::mem::offset_of!(Dual<B>, val),
+        ]
+    }
     #[inline(always)]
     unsafe fn read(p: *const f32) -> Self {
         Dual::new(B::read(p), B::read(p.add(B::STRIDE)), B::read(p.add(2 * B::STRIDE)))

@@ -13,6 +13,8 @@
 //! branches; loops carry a live mask with break/continue masks per level; `return` collects
 //! lanes per inlined frame; stores into varying variables blend with the mask.
 
+mod noise;
+
 use crate::abi::{self, host, GLOBAL_ORDER};
 use crate::rt::{self, RtKind};
 use anysl_rsl::ir::{self, BinOp, Block, Const, Function, Global, Node, Op, SlotId, SlotKind, UnOp, Value};
@@ -59,6 +61,8 @@ pub struct Target {
     pub dual: bool,
     /// Lower each op to a call of a threaded target-library function (else inline).
     pub threaded: bool,
+    /// Emit `noise`/`snoise`/`cellnoise` as inline IR (else a call into the Rust library).
+    pub inline_noise: bool,
 }
 
 /// One float: its value and, for dual numbers, its derivatives.
@@ -142,6 +146,8 @@ pub struct Cg<'c, 'm> {
     pub fn_attrs: Vec<(String, String)>,
     /// Threaded functions created (name → count of calls).
     pub threaded_fns: usize,
+    /// Where the globals lie in the renderer's `Globals` struct.
+    pub layout: abi::GlobalsLayout,
 }
 
 const SHADE_NAME: &str = "anysl_shade";
@@ -169,6 +175,7 @@ impl<'c, 'm> Cg<'c, 'm> {
             shapes: HashMap::new(),
             fn_attrs: Vec::new(),
             threaded_fns: 0,
+            layout: abi::GlobalsLayout { comp: [0; abi::GLOBAL_VALUES], dual: [0, 0] },
         }
     }
 
@@ -1036,7 +1043,8 @@ impl<'c, 'm> Cg<'c, 'm> {
         M { uni: false, v: v.into() }
     }
 
-    /// Reads a global's components from the buffer (full representation).
+    /// Reads a global's components from the renderer's `Globals` struct (full representation),
+    /// at the offsets of [`Cg::layout`].
     fn read_global(&self, g: Global) -> Vec<S<'c>> {
         let Some((_, off)) = GLOBAL_ORDER.iter().find(|(x, _)| *x == g) else {
             return vec![self.fc(0.0); 3];
@@ -1044,7 +1052,6 @@ impl<'c, 'm> Cg<'c, 'm> {
         let n = g.ty().base.components();
         let gp = self.st().g.into_pointer_value();
         let vt = self.vt();
-        let stride = self.stride() as u64;
         let ld = |fo: u64| {
             let p = unsafe { self.b.build_gep(gp, &[self.cx.i64_type().const_int(fo, false)], "") }.expect("gep");
             let p = self.b.build_pointer_cast(p, self.ptr_ty(vt), "").expect("cast");
@@ -1052,12 +1059,12 @@ impl<'c, 'm> Cg<'c, 'm> {
             v.as_instruction_value().map(|i| i.set_alignment(4));
             v
         };
+        let [dx, dy] = self.layout.dual.map(u64::from);
         (0..n)
             .map(|k| {
-                let base = (*off as u64 + k as u64) * stride;
+                let base = u64::from(self.layout.comp[off + k]);
                 let v = ld(base);
-                let d =
-                    self.t.dual.then(|| (ld(base + u64::from(self.t.lanes)), ld(base + 2 * u64::from(self.t.lanes))));
+                let d = self.t.dual.then(|| (ld(base + dx), ld(base + dy)));
                 S { r: self.full(), v, d }
             })
             .collect()
@@ -2491,12 +2498,22 @@ impl<'c> Cg<'c, '_> {
             "noise" | "snoise" | "cellnoise" => {
                 let dims = noise_dims(0, n).ok_or_else(|| CgError(format!("{name} arguments")))?;
                 let kind = match name {
-                    "noise" => rt::nkind::NOISE,
-                    "snoise" => rt::nkind::SNOISE,
-                    _ => rt::nkind::CELL,
+                    "noise" => noise::NoiseKind::Unsigned,
+                    "snoise" => noise::NoiseKind::Signed,
+                    _ => noise::NoiseKind::Cell,
                 };
-                let aux = kind | dims << 4 | (rw as u32) << 8;
-                Val::Num(self.rt_call(RtKind::Noise, aux, &flat_args(self, 0..n)?, rw, false))
+                let coords = flat_args(self, 0..n)?;
+                debug_assert_eq!(coords.len(), dims as usize);
+                if self.t.inline_noise {
+                    Val::Num(self.noise_inline(kind, &coords, rw))
+                } else {
+                    let k = match kind {
+                        noise::NoiseKind::Unsigned => rt::nkind::NOISE,
+                        noise::NoiseKind::Signed => rt::nkind::SNOISE,
+                        noise::NoiseKind::Cell => rt::nkind::CELL,
+                    };
+                    Val::Num(self.rt_call(RtKind::Noise, k | dims << 4 | (rw as u32) << 8, &coords, rw, false))
+                }
             }
             "pnoise" | "psnoise" => {
                 let half = n / 2;
@@ -2575,14 +2592,48 @@ impl<'c> Cg<'c, '_> {
         let hi = 2f64.powi(120);
         let rescale =
             self.mor(self.cmp(FloatPredicate::OLT, l2, self.fc(lo)), self.cmp(FloatPredicate::OGT, l2, self.fc(hi)));
-        // The rare path, computed branch-free: normalize(v / max|c|).
-        let m = self.minmax(self.minmax(self.abs(a[0]), self.abs(a[1]), true), self.abs(a[2]), true);
-        let usable =
-            self.mand(self.cmp(FloatPredicate::OGT, m, zero), self.cmp(FloatPredicate::OLT, m, self.fc(f64::INFINITY)));
-        let den = self.sel(usable, m, self.fc(1.0));
-        let w: Vec<S<'c>> = a.iter().map(|&c| self.div(c, den)).collect();
-        let wl2 = self.dot(&w, &w);
-        let wk = self.sel(self.cmp(FloatPredicate::OGT, wl2, zero), self.div(self.fc(1.0), self.sqrt(wl2)), zero);
-        (0..3).map(|c| self.sel(rescale, self.mul(w[c], wk), unit[c])).collect()
+        // The rare path, normalize(v / max|c|), only when some lane needs it (as anysl-core).
+        self.when_any(rescale, unit, |cg, unit| {
+            let m = cg.minmax(cg.minmax(cg.abs(a[0]), cg.abs(a[1]), true), cg.abs(a[2]), true);
+            let usable =
+                cg.mand(cg.cmp(FloatPredicate::OGT, m, zero), cg.cmp(FloatPredicate::OLT, m, cg.fc(f64::INFINITY)));
+            let den = cg.sel(usable, m, cg.fc(1.0));
+            let w: Vec<S<'c>> = a.iter().map(|&c| cg.div(c, den)).collect();
+            let wl2 = cg.dot(&w, &w);
+            let wk = cg.sel(cg.cmp(FloatPredicate::OGT, wl2, zero), cg.div(cg.fc(1.0), cg.sqrt(wl2)), zero);
+            (0..3).map(|c| cg.sel(rescale, cg.mul(w[c], wk), unit[c])).collect()
+        })
+    }
+
+    /// `rare(common)` where some lane of `m` is set, else `common`: a branch around code that
+    /// is needed only for unusual lanes (the values are merged with phis).
+    fn when_any(&self, m: M<'c>, common: Vec<S<'c>>, rare: impl FnOnce(&Self, &[S<'c>]) -> Vec<S<'c>>) -> Vec<S<'c>> {
+        let f = self.cur_fn();
+        let from = self.b.get_insert_block().expect("positioned");
+        let rare_bb = self.cx.append_basic_block(f, "rare");
+        let join = self.cx.append_basic_block(f, "join");
+        self.b.build_conditional_branch(self.any(m), rare_bb, join).expect("br");
+        self.b.position_at_end(rare_bb);
+        let r: Vec<S<'c>> = rare(self, &common).into_iter().zip(&common).map(|(x, c)| self.to(x, c.r)).collect();
+        let rare_end = self.b.get_insert_block().expect("positioned");
+        self.b.build_unconditional_branch(join).expect("br");
+        self.b.position_at_end(join);
+        let phi = |a: BasicValueEnum<'c>, b: BasicValueEnum<'c>| -> BasicValueEnum<'c> {
+            let p = self.b.build_phi(a.get_type(), "").expect("phi");
+            p.add_incoming(&[(&a, from), (&b, rare_end)]);
+            p.as_basic_value()
+        };
+        common
+            .iter()
+            .zip(&r)
+            .map(|(c, x)| S {
+                r: c.r,
+                v: phi(c.v, x.v),
+                d: match (c.d, x.d) {
+                    (Some((cx, cy)), Some((xx, xy))) => Some((phi(cx, xx), phi(cy, xy))),
+                    _ => None,
+                },
+            })
+            .collect()
     }
 }

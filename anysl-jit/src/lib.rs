@@ -107,6 +107,20 @@ impl Variant {
         }
     }
 
+    /// Where the renderer's `Globals` of this variant's float type keeps each global.
+    #[must_use]
+    pub fn globals_layout(self) -> abi::GlobalsLayout {
+        use abi::GlobalsLayout as L;
+        match self {
+            Self::F32 => L::of::<f32>(),
+            Self::X4 => L::of::<F32x4>(),
+            Self::X8 => L::of::<F32x8>(),
+            Self::X16 => L::of::<F32x16>(),
+            Self::DualF32 => L::of::<Dual<f32>>(),
+            Self::DualX8 => L::of::<Dual<F32x8>>(),
+        }
+    }
+
     fn rt_table(self) -> [usize; 5] {
         fn t<F: JitFloat>() -> [usize; 5] {
             rt::rt_table::<F>().map(|f| f as usize)
@@ -133,13 +147,17 @@ pub struct JitOptions {
     pub host_cpu: bool,
     /// Specialize uniform parameters to the instance's values (recompiles on `set_param`).
     pub specialize: bool,
+    /// Emit the noise family as inline LLVM IR (vectorized hash, derivatives dropped where
+    /// unused) instead of calling the Rust library: faster shading, longer compiles.
+    pub inline_noise: bool,
 }
 
 impl JitOptions {
-    /// The defaults: O2, threaded, host CPU, specialized.
+    /// The defaults: O2, threaded, host CPU, specialized, noise through the library (inline
+    /// noise compiled 3–5× slower and shaded no faster on the Table-1 shaders).
     #[must_use]
     pub const fn new() -> Self {
-        Self { opt_level: 2, threaded: true, host_cpu: true, specialize: true }
+        Self { opt_level: 2, threaded: true, host_cpu: true, specialize: true, inline_noise: false }
     }
 }
 
@@ -300,13 +318,19 @@ pub fn compile_with(
     let ctx = Box::new(Context::create());
     // SAFETY: the context lives in `Owned` next to everything built from it and is dropped last.
     let cref: &'static Context = unsafe { &*(ctx.as_ref() as *const Context) };
-    let target = Target { lanes: variant.lanes(), dual: variant.dual(), threaded: opts.threaded };
+    let target = Target {
+        lanes: variant.lanes(),
+        dual: variant.dual(),
+        threaded: opts.threaded,
+        inline_noise: opts.inline_noise,
+    };
     let mut cg = Cg::new(cref, &m.func, target, variant.rt_table(), Variant::F32.rt_table());
     let (cpu, features) = if opts.host_cpu {
         (TargetMachine::get_host_cpu_name().to_string(), TargetMachine::get_host_cpu_features().to_string())
     } else {
         ("x86-64".to_string(), String::new())
     };
+    cg.layout = variant.globals_layout();
     cg.fn_attrs = vec![("target-cpu".into(), cpu.clone()), ("target-features".into(), features.clone())];
     cg.generate(&m, values).map_err(|e| JitError(e.0))?;
     stats.threaded_fns = cg.threaded_fns;

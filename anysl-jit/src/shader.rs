@@ -1,14 +1,14 @@
 //! [`JitShader`]: a JIT-compiled `.sl` surface shader behind the same [`SurfaceShader`]
 //! boundary as every other shader.
 
-use crate::abi::{JitFloat, GLOBAL_ORDER, GLOBAL_VALUES, OUTPUT_VALUES};
+use crate::abi::{JitFloat, OUTPUT_VALUES};
 use crate::rt::{cast, HostCtx, HostTable};
 use crate::{compile, CompiledShader, JitError, JitOptions, Variant};
 use anysl_ad::Dual;
 use anysl_core::prelude::*;
 use anysl_core::shader::{ParamError, ParamValue, ShaderMeta};
 use anysl_rsl::back::interp::{InterpShader, Program};
-use anysl_rsl::ir::{Const, Global, Module};
+use anysl_rsl::ir::{Const, Module};
 use anysl_rsl::CompileOptions;
 use anysl_simd::{F32x16, F32x4, F32x8};
 use std::any::TypeId;
@@ -46,8 +46,6 @@ pub struct JitShader {
     pub opts: JitOptions,
     variants: [Slot; 6],
     interp: InterpShader,
-    /// The globals the shader reads (only these are copied in).
-    used_globals: Vec<(Global, usize)>,
 }
 
 impl Clone for JitShader {
@@ -58,7 +56,6 @@ impl Clone for JitShader {
             opts: self.opts.clone(),
             variants: Default::default(),
             interp: self.interp.clone(),
-            used_globals: self.used_globals.clone(),
         }
     }
 }
@@ -79,13 +76,7 @@ impl JitShader {
         let mut interp_module = module.clone();
         anysl_rsl::passes::optimize(&mut interp_module, &anysl_rsl::passes::PassOptions::default());
         let program = Program::new(interp_module).map_err(|e| JitError(e.to_string()))?;
-        let used_globals = GLOBAL_ORDER
-            .iter()
-            .copied()
-            .filter(|(g, _)| matches!(g, Global::P | Global::Ng | Global::Os) || module.func.global_slot(*g).is_some())
-            .collect();
         Ok(Self {
-            used_globals,
             module: Arc::new(module),
             values,
             opts,
@@ -109,9 +100,15 @@ impl JitShader {
     /// # Errors
     /// When the shader cannot be compiled for this variant.
     pub fn variant(&self, v: Variant) -> Result<Arc<CompiledShader>, String> {
+        self.variant_ref(v).map(|c| Arc::clone(c)).map_err(Clone::clone)
+    }
+
+    /// [`JitShader::variant`] without touching the reference count (the per-call path).
+    #[inline]
+    fn variant_ref(&self, v: Variant) -> Result<&Arc<CompiledShader>, &String> {
         self.variants[v.index()]
             .get_or_init(|| compile(&self.module, &self.values, v, &self.opts).map(Arc::new).map_err(|e| e.to_string()))
-            .clone()
+            .as_ref()
     }
 
     /// The variants compiled so far.
@@ -133,37 +130,16 @@ impl JitShader {
         ctx: &mut C,
         e: &Exec<F>,
     ) -> SurfaceOutput<F> {
-        // Uninitialized: only the globals the shader reads are written and read; every output
-        // is written by the compiled code (zeroing 9 KB per call would cost more than shading).
-        let mut gbuf_m = std::mem::MaybeUninit::<[f32; GLOBAL_VALUES * 48]>::uninit();
+        // Every output is written by the compiled code: no need to zero the buffer.
         let mut obuf_m = std::mem::MaybeUninit::<[f32; OUTPUT_VALUES * 48]>::uninit();
-        let gbuf: *mut f32 = gbuf_m.as_mut_ptr().cast();
         let obuf: *mut f32 = obuf_m.as_mut_ptr().cast();
         let mut mbuf = [0u32; 16];
-        let g = *ctx.globals();
+        // The compiled code reads the globals in place, at the offsets of `Globals<F>`'s
+        // layout (`abi::GlobalsLayout`); a copy, so that the context can be lent mutably to
+        // the host callbacks meanwhile.
+        let g: Globals<F> = *ctx.globals();
+        let gbuf = (&g as *const Globals<F>).cast::<f32>();
         let st = G::STRIDE;
-        // SAFETY: `k < GLOBAL_VALUES` and the buffer holds `GLOBAL_VALUES * 48 >= GLOBAL_VALUES * st` floats.
-        let put = |buf: *mut f32, k: usize, x: F| unsafe { cast::<F, G>(x).write(buf.add(k * st)) };
-        for &(gl, off) in &self.used_globals {
-            match gl {
-                Global::P => put3(gbuf, off, g.P, put),
-                Global::N => put3(gbuf, off, g.N, put),
-                Global::Ng => put3(gbuf, off, g.Ng, put),
-                Global::I => put3(gbuf, off, g.I, put),
-                Global::E => put3(gbuf, off, g.E, put),
-                Global::DPdu => put3(gbuf, off, g.dPdu, put),
-                Global::DPdv => put3(gbuf, off, g.dPdv, put),
-                Global::Cs => put3(gbuf, off, Vec3::new(g.Cs.r, g.Cs.g, g.Cs.b), put),
-                Global::Os => put3(gbuf, off, Vec3::new(g.Os.r, g.Os.g, g.Os.b), put),
-                Global::S => put(gbuf, off, g.s),
-                Global::T => put(gbuf, off, g.t),
-                Global::U => put(gbuf, off, g.u),
-                Global::V => put(gbuf, off, g.v),
-                Global::Du => put(gbuf, off, g.du),
-                Global::Dv => put(gbuf, off, g.dv),
-                _ => {}
-            }
-        }
         unsafe { G::write_mask(cast::<F::Mask, G::Mask>(e.mask()), mbuf.as_mut_ptr()) };
         let host = HostTable::<F, C, G>::table();
         let mut hc = HostCtx { ctx, lit: None };
@@ -175,13 +151,6 @@ impl JitShader {
         let get = |k: usize| -> F { unsafe { cast::<G, F>(G::read(obuf.add(k * st))) } };
         SurfaceOutput { Ci: Color::new(get(0), get(1), get(2)), Oi: Color::new(get(3), get(4), get(5)) }
     }
-}
-
-#[inline(always)]
-fn put3<F: Copy>(buf: *mut f32, off: usize, v: Vec3<F>, put: impl Fn(*mut f32, usize, F)) {
-    put(buf, off, v.x);
-    put(buf, off + 1, v.y);
-    put(buf, off + 2, v.z);
 }
 
 impl Shader for JitShader {
@@ -203,14 +172,14 @@ impl Shader for JitShader {
 impl SurfaceShader for JitShader {
     fn shade<F: ShadingFloat, C: ShadingContext<F>>(&self, ctx: &mut C, e: &mut Exec<F>) -> SurfaceOutput<F> {
         if let Some(v) = variant_of::<F>() {
-            if let Ok(cs) = self.variant(v) {
+            if let Ok(cs) = self.variant_ref(v) {
                 return match v {
-                    Variant::F32 => self.run::<F, C, f32>(&cs, ctx, e),
-                    Variant::X4 => self.run::<F, C, F32x4>(&cs, ctx, e),
-                    Variant::X8 => self.run::<F, C, F32x8>(&cs, ctx, e),
-                    Variant::X16 => self.run::<F, C, F32x16>(&cs, ctx, e),
-                    Variant::DualF32 => self.run::<F, C, Dual<f32>>(&cs, ctx, e),
-                    Variant::DualX8 => self.run::<F, C, Dual<F32x8>>(&cs, ctx, e),
+                    Variant::F32 => self.run::<F, C, f32>(cs, ctx, e),
+                    Variant::X4 => self.run::<F, C, F32x4>(cs, ctx, e),
+                    Variant::X8 => self.run::<F, C, F32x8>(cs, ctx, e),
+                    Variant::X16 => self.run::<F, C, F32x16>(cs, ctx, e),
+                    Variant::DualF32 => self.run::<F, C, Dual<f32>>(cs, ctx, e),
+                    Variant::DualX8 => self.run::<F, C, Dual<F32x8>>(cs, ctx, e),
                 };
             }
         }

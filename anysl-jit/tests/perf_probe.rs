@@ -16,26 +16,29 @@ fn rsl_dir() -> PathBuf {
 fn probe() {
     let set = PointSet::random(1 << 15, 1);
     let lights = table1_lights();
+    // `NOISE=call` measures the library-call noise instead of the inline IR.
+    let inline_noise = std::env::var("NOISE").map_or(true, |v| v != "call");
+    let opts = JitOptions { inline_noise, ..JitOptions::default() };
     for name in ["plastic", "checker", "brick", "wood", "granite", "parquet", "screen", "starball", "venus", "glass"] {
         let path = rsl_dir().join(format!("{name}.sl"));
-        let jit = JitShader::from_file(&path, &[rsl_dir().join("include")], JitOptions::default()).unwrap();
+        let jit = JitShader::from_file(&path, &[rsl_dir().join("include")], opts.clone()).unwrap();
         let t = Instant::now();
         let cs = compile(&jit.module, &jit.values, Variant::X8, &jit.opts).unwrap();
         let ct = t.elapsed().as_secs_f64() * 1e3;
         let _ = jit.variant(Variant::X8);
         let mut out = ShadeOut::new(set.len());
         let aot = Surface::by_name(if name == "plastic" { "phong" } else { name }).unwrap();
-        let mut time = |f: &mut dyn FnMut(&mut ShadeOut<f32>)| {
-            let mut best = f64::MAX;
-            for _ in 0..5 {
-                let t = Instant::now();
-                f(&mut out);
-                best = best.min(t.elapsed().as_secs_f64());
-            }
-            set.len() as f64 / best
-        };
-        let j = time(&mut |o| shade_points::<F32x8, _, Light>(&jit, &lights, &set, o));
-        let a = time(&mut |o| shade_points::<F32x8, _, Light>(&aot, &lights, &set, o));
+        // Interleaved, best of 7 each: drift on a shared machine hits both alike.
+        let (mut bj, mut ba) = (f64::MAX, f64::MAX);
+        for _ in 0..7 {
+            let t = Instant::now();
+            shade_points::<F32x8, _, Light>(&jit, &lights, &set, &mut out);
+            bj = bj.min(t.elapsed().as_secs_f64());
+            let t = Instant::now();
+            shade_points::<F32x8, _, Light>(&aot, &lights, &set, &mut out);
+            ba = ba.min(t.elapsed().as_secs_f64());
+        }
+        let (j, a) = (set.len() as f64 / bj, set.len() as f64 / ba);
         eprintln!(
             "{name:10} compile {ct:6.1} ms {:?} insts {:?}  jit-x8 {j:.3e} aot-x8 {a:.3e} ratio {:.2}",
             cs.stats.times_ms.iter().map(|(s, t)| format!("{s}={t:.1}")).collect::<Vec<_>>(),
@@ -53,4 +56,49 @@ fn dump_ir() {
     let jit = JitShader::from_file(&path, &[rsl_dir().join("include")], JitOptions::default()).unwrap();
     let cs = anysl_jit::compile_with(&jit.module, &jit.values, Variant::X8, &jit.opts, true).unwrap();
     std::fs::write("/tmp/h6_ir.ll", cs.llvm_ir.unwrap()).unwrap();
+}
+
+/// One shader's jit-x8 in a loop, for `perf record` (`SHADER=brick`).
+#[test]
+#[ignore]
+fn spin_x8() {
+    let name = std::env::var("SHADER").unwrap_or_else(|_| "plastic".into());
+    let set = PointSet::random(1 << 14, 1);
+    let lights = table1_lights();
+    let path = rsl_dir().join(format!("{name}.sl"));
+    let jit = JitShader::from_file(&path, &[rsl_dir().join("include")], JitOptions::default()).unwrap();
+    let mut out = ShadeOut::new(set.len());
+    let aot = std::env::var("AOT").is_ok();
+    let s = Surface::by_name(if name == "plastic" { "phong" } else { &name }).unwrap();
+    if let Ok(dir) = std::env::var("DUMP_CODE") {
+        // For `perf`: a symbol for the JIT code and its bytes (disassemble with
+        // `objdump -D -b binary -mi386:x86-64 --adjust-vma=ADDR`).
+        let cs = jit.variant(Variant::X8).unwrap();
+        let addr = cs.f as usize;
+        // Up to the end of the mapping that holds the code.
+        let maps = std::fs::read_to_string("/proc/self/maps").unwrap();
+        let end = maps
+            .lines()
+            .filter_map(|l| {
+                let (a, b) = l.split_whitespace().next()?.split_once('-')?;
+                Some((usize::from_str_radix(a, 16).ok()?, usize::from_str_radix(b, 16).ok()?))
+            })
+            .find(|&(a, b)| a <= addr && addr < b)
+            .unwrap()
+            .1;
+        let len = end - addr;
+        std::fs::write(format!("/tmp/perf-{}.map", std::process::id()), format!("{addr:x} {len:x} jit_shade\n"))
+            .unwrap();
+        let bytes = unsafe { std::slice::from_raw_parts(addr as *const u8, len) };
+        std::fs::write(format!("{dir}/code.bin"), bytes).unwrap();
+        std::fs::write(format!("{dir}/addr"), format!("{addr:#x}")).unwrap();
+    }
+    let t = Instant::now();
+    while t.elapsed().as_secs_f64() < 3.0 {
+        if aot {
+            shade_points::<F32x8, _, Light>(&s, &lights, &set, &mut out);
+        } else {
+            shade_points::<F32x8, _, Light>(&jit, &lights, &set, &mut out);
+        }
+    }
 }

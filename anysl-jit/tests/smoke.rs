@@ -53,3 +53,30 @@ fn shaders_match_interpreter() {
         assert!(check::<Dual<f32>>(name, &jit, &set) < 1e-4, "{name} dual");
     }
 }
+
+/// The inline-IR noise (`JitOptions::inline_noise`) computes what the library noise computes.
+#[test]
+fn inline_noise_matches_library_noise() {
+    let set = PointSet::random(256, 11);
+    let lights = table1_lights();
+    for name in ["wood", "granite", "venus", "parquet"] {
+        let path = rsl_dir().join(format!("{name}.sl"));
+        let inc = [rsl_dir().join("include")];
+        let lib = JitShader::from_file(&path, &inc, JitOptions::default()).unwrap();
+        let inline =
+            JitShader::from_file(&path, &inc, JitOptions { inline_noise: true, ..JitOptions::default() }).unwrap();
+        let run = |j: &JitShader, dual: bool, wide: bool| {
+            let mut o = ShadeOut::new(set.len());
+            match (dual, wide) {
+                (true, _) => shade_points::<Dual<f32>, JitShader, Light>(j, &lights, &set, &mut o),
+                (false, true) => shade_points::<F32x8, JitShader, Light>(j, &lights, &set, &mut o),
+                (false, false) => shade_points::<f32, JitShader, Light>(j, &lights, &set, &mut o),
+            }
+            o
+        };
+        for (dual, wide) in [(false, false), (false, true), (true, false)] {
+            let d = max_diff(&run(&lib, dual, wide), &run(&inline, dual, wide));
+            assert!(d <= 1e-6, "{name} dual={dual} wide={wide}: inline noise differs by {d:e}");
+        }
+    }
+}
