@@ -39,7 +39,12 @@ const FIELDS: usize = 31;
 #[derive(Clone, Debug)]
 pub struct PointSet {
     n: usize,
-    data: Vec<Vec<f32>>,
+    /// The [`FIELDS`] arrays one after the other, field `k` at `data[k * stride ..][.. n]`
+    /// (one allocation, so a chunk's loads need one bounds check, not one per field).
+    data: Vec<f32>,
+    /// Distance between fields: `n` plus one cache line, so that a chunk's loads from the
+    /// 31 fields do not all fall into one L1 set (as they would for a power-of-two `n`).
+    stride: usize,
 }
 
 /// Field indices into [`PointSet`] arrays ([`PointSet::field`]); triples take 3 slots.
@@ -71,7 +76,7 @@ impl PointSet {
     pub fn random(n: usize, seed: u64) -> Self {
         let n = n.div_ceil(16) * 16;
         let mut rng = SplitMix64(seed);
-        let mut data = vec![Vec::with_capacity(n); FIELDS];
+        let mut data: Vec<Vec<f32>> = vec![Vec::with_capacity(n); FIELDS];
         let eye = [0.0, 0.0, 3.0];
         for _ in 0..n {
             // Uniform on the visible cap z > 1/3 (points whose normal faces the eye).
@@ -115,7 +120,12 @@ impl PointSet {
                 data[i].push(val as f32);
             }
         }
-        Self { n, data }
+        let stride = n + 16;
+        let mut flat = vec![0.0; FIELDS * stride];
+        for (k, f) in data.iter().enumerate() {
+            flat[k * stride..k * stride + n].copy_from_slice(f);
+        }
+        Self { n, data: flat, stride }
     }
 
     /// Number of points.
@@ -133,12 +143,17 @@ impl PointSet {
     /// Raw array `k` (indices in [`field`]).
     #[must_use]
     pub fn field(&self, k: usize) -> &[f32] {
-        &self.data[k]
+        &self.data[k * self.stride..][..self.n]
     }
 
+    /// Points `i .. i + F::LANES` of field `k`; the caller has checked `i + F::LANES <= n`.
     #[inline(always)]
     fn load<F: ShadingFloat>(&self, k: usize, i: usize) -> F {
-        F::load(&self.data[k][i..])
+        debug_assert!(k < FIELDS && i + F::LANES <= self.n);
+        let at = k * self.stride + i;
+        // SAFETY: `data` holds `FIELDS * stride` values and `i + F::LANES <= n < stride`
+        // (checked once in `globals`, the only caller), so `at + F::LANES <= FIELDS * stride`.
+        F::load(unsafe { self.data.get_unchecked(at..at + F::LANES) })
     }
 
     #[inline(always)]
@@ -149,10 +164,25 @@ impl PointSet {
     /// The globals of points `i .. i + F::LANES`, with derivative seeds for dual numbers:
     /// P carries dP/dx, dP/dy; s and u carry ds/dx, ds/dy; t and v carry dt/dx, dt/dy;
     /// N and I carry the same footprint scaled (the sphere's normal changes like P).
+    ///
+    /// # Panics
+    /// When `i + F::LANES` exceeds [`PointSet::len`].
     #[inline(always)]
     #[must_use]
     pub fn globals<F: ShadingFloat>(&self, i: usize) -> Globals<F> {
-        let p = self.load3::<F>(field::P, i);
+        let mut g = Globals::unit_square(F::c(0.0), F::c(0.0));
+        self.load_globals(i, &mut g);
+        g
+    }
+
+    /// [`PointSet::globals`] written field by field into `g` (a context's globals are filled
+    /// in place, not built elsewhere and copied: 1 KiB per chunk at 8 lanes).
+    ///
+    /// # Panics
+    /// When `i + F::LANES` exceeds [`PointSet::len`].
+    #[inline(always)]
+    pub fn load_globals<F: ShadingFloat>(&self, i: usize, g: &mut Globals<F>) {
+        assert!(i + F::LANES <= self.n, "points {i}..{} of {}", i + F::LANES, self.n);
         let dpdx = self.load3::<F>(field::DPDX, i);
         let dpdy = self.load3::<F>(field::DPDY, i);
         let seeded = |v: Vec3<F>| {
@@ -164,28 +194,21 @@ impl PointSet {
             self.load(field::DTDX, i),
             self.load(field::DTDY, i),
         );
-        let s = self.load::<F>(field::S, i).with_derivs(dsdx, dsdy);
-        let t = self.load::<F>(field::T, i).with_derivs(dtdx, dtdy);
-        let u = self.load::<F>(field::U, i).with_derivs(dsdx, dsdy);
-        let v = self.load::<F>(field::V, i).with_derivs(dtdx, dtdy);
-        let e = Vec3::c(0.0, 0.0, 3.0);
-        Globals {
-            P: seeded(p),
-            N: seeded(self.load3(field::N, i)),
-            Ng: seeded(self.load3(field::N, i)),
-            I: seeded(self.load3(field::I, i)),
-            E: e,
-            s,
-            t,
-            u,
-            v,
-            du: self.load(field::DU, i),
-            dv: self.load(field::DV, i),
-            dPdu: self.load3(field::DPDU, i),
-            dPdv: self.load3(field::DPDV, i),
-            Cs: Color::c(1.0, 1.0, 1.0),
-            Os: Color::c(1.0, 1.0, 1.0),
-        }
+        g.P = seeded(self.load3(field::P, i));
+        g.N = seeded(self.load3(field::N, i));
+        g.Ng = g.N;
+        g.I = seeded(self.load3(field::I, i));
+        g.E = Vec3::c(0.0, 0.0, 3.0);
+        g.s = self.load::<F>(field::S, i).with_derivs(dsdx, dsdy);
+        g.t = self.load::<F>(field::T, i).with_derivs(dtdx, dtdy);
+        g.u = self.load::<F>(field::U, i).with_derivs(dsdx, dsdy);
+        g.v = self.load::<F>(field::V, i).with_derivs(dtdx, dtdy);
+        g.du = self.load(field::DU, i);
+        g.dv = self.load(field::DV, i);
+        g.dPdu = self.load3(field::DPDU, i);
+        g.dPdv = self.load3(field::DPDV, i);
+        g.Cs = Color::c(1.0, 1.0, 1.0);
+        g.Os = Color::c(1.0, 1.0, 1.0);
     }
 }
 
@@ -238,9 +261,16 @@ where
         #[inline(never)]
         fn visit<S: SurfaceShader>(self, shader: &S) {
             let [cr, cg, cb, or, og, ob] = &mut self.out.channels;
+            if self.set.len() < F::LANES {
+                return;
+            }
+            // One context, its globals refilled in place per chunk.
+            let mut ctx = PointContext::new(self.set.globals::<F>(0), self.lights);
             let mut i = 0;
             while i + F::LANES <= self.set.len() {
-                let (ci, oi) = shade_chunk::<F, S, L>(shader, self.lights, self.set, i);
+                self.set.load_globals(i, &mut ctx.globals);
+                let out = shader.shade(&mut ctx, &mut Exec::<F>::new());
+                let (ci, oi) = (out.Ci, out.Oi);
                 ci.r.store(&mut cr[i..]);
                 ci.g.store(&mut cg[i..]);
                 ci.b.store(&mut cb[i..]);

@@ -2549,6 +2549,9 @@ impl<'c> Cg<'c, '_> {
                 } else {
                     (rw, rest.len())
                 };
+                if nk > rt::MAX_KNOTS {
+                    return err(format!("spline with {nk} knots (the JIT passes at most {})", rt::MAX_KNOTS));
+                }
                 let mut all = nums(self, first)?;
                 all.extend(flat_args(self, rest)?);
                 let aux = nk as u32 | bi << 8 | (w as u32) << 16;

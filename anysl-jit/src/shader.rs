@@ -135,10 +135,10 @@ impl JitShader {
         let obuf: *mut f32 = obuf_m.as_mut_ptr().cast();
         let mut mbuf = [0u32; 16];
         // The compiled code reads the globals in place, at the offsets of `Globals<F>`'s
-        // layout (`abi::GlobalsLayout`); a copy, so that the context can be lent mutably to
-        // the host callbacks meanwhile.
-        let g: Globals<F> = *ctx.globals();
-        let gbuf = (&g as *const Globals<F>).cast::<f32>();
+        // layout (`abi::GlobalsLayout`), while the host callbacks hold the context mutably:
+        // they never write the globals (a `ShadingContext` hands them out only by shared
+        // reference), and no Rust code reads through this pointer after they ran.
+        let gbuf = (ctx.globals() as *const Globals<F>).cast::<f32>();
         let st = G::STRIDE;
         unsafe { G::write_mask(cast::<F::Mask, G::Mask>(e.mask()), mbuf.as_mut_ptr()) };
         let host = HostTable::<F, C, G>::table();

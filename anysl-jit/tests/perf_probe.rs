@@ -65,11 +65,14 @@ fn spin_x8() {
     let name = std::env::var("SHADER").unwrap_or_else(|_| "plastic".into());
     let set = PointSet::random(1 << 14, 1);
     let lights = table1_lights();
-    let path = rsl_dir().join(format!("{name}.sl"));
+    let mut path = rsl_dir().join(format!("{name}.sl"));
+    if !path.exists() {
+        path = rsl_dir().join("standard").join(format!("{name}.sl"));
+    }
     let jit = JitShader::from_file(&path, &[rsl_dir().join("include")], JitOptions::default()).unwrap();
     let mut out = ShadeOut::new(set.len());
     let aot = std::env::var("AOT").is_ok();
-    let s = Surface::by_name(if name == "plastic" { "phong" } else { &name }).unwrap();
+    let s = anysl_shaders::rsl::RslSurface::by_name(&name).unwrap();
     if let Ok(dir) = std::env::var("DUMP_CODE") {
         // For `perf`: a symbol for the JIT code and its bytes (disassemble with
         // `objdump -D -b binary -mi386:x86-64 --adjust-vma=ADDR`).
@@ -100,5 +103,35 @@ fn spin_x8() {
         } else {
             shade_points::<F32x8, _, Light>(&jit, &lights, &set, &mut out);
         }
+    }
+}
+
+/// Fixed cost per call: `SHADER` (a `shaders/rsl/standard` or Table-1 name) JIT x8 against its
+/// generated-Rust twin (`anysl_shaders::rsl`), 7 interleaved runs, best of each.
+#[test]
+#[ignore]
+fn overhead() {
+    let set = PointSet::random(1 << 15, 1);
+    let lights = table1_lights();
+    for name in ["constant", "matte", "plastic", "metal"] {
+        let mut path = rsl_dir().join(format!("{name}.sl"));
+        if !path.exists() {
+            path = rsl_dir().join("standard").join(format!("{name}.sl"));
+        }
+        let jit = JitShader::from_file(&path, &[rsl_dir().join("include")], JitOptions::default()).unwrap();
+        let _ = jit.variant(Variant::X8);
+        let aot = anysl_shaders::rsl::RslSurface::by_name(name).unwrap();
+        let mut out = ShadeOut::new(set.len());
+        let (mut bj, mut ba) = (f64::MAX, f64::MAX);
+        for _ in 0..7 {
+            let t = Instant::now();
+            shade_points::<F32x8, _, Light>(&jit, &lights, &set, &mut out);
+            bj = bj.min(t.elapsed().as_secs_f64());
+            let t = Instant::now();
+            shade_points::<F32x8, _, Light>(&aot, &lights, &set, &mut out);
+            ba = ba.min(t.elapsed().as_secs_f64());
+        }
+        let n = set.len() as f64 / 8.0;
+        eprintln!("{name:10} jit {:7.1} ns/call  generated-rust {:7.1} ns/call", bj / n * 1e9, ba / n * 1e9);
     }
 }
