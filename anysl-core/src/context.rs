@@ -8,6 +8,78 @@ use crate::float::{Blend, Mask, ShadingFloat};
 use crate::shader::LightShader;
 use crate::vec::{Color, Vec3};
 
+/// A set of the fields of [`Globals`] — what a shader reads, so that a renderer may leave the
+/// others unset (OSL's "globals needed", RenderMan's shader needs). One bit per field;
+/// [`SurfaceShader::globals_read`](crate::SurfaceShader::globals_read) publishes it.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct GlobalSet(pub u16);
+
+impl GlobalSet {
+    /// No global.
+    pub const NONE: Self = Self(0);
+    /// `P`.
+    pub const P: Self = Self(1 << 0);
+    /// `N`.
+    pub const N: Self = Self(1 << 1);
+    /// `Ng`.
+    pub const NG: Self = Self(1 << 2);
+    /// `I`.
+    pub const I: Self = Self(1 << 3);
+    /// `E`.
+    pub const E: Self = Self(1 << 4);
+    /// `s`.
+    pub const S: Self = Self(1 << 5);
+    /// `t`.
+    pub const T: Self = Self(1 << 6);
+    /// `u`.
+    pub const U: Self = Self(1 << 7);
+    /// `v`.
+    pub const V: Self = Self(1 << 8);
+    /// `du`.
+    pub const DU: Self = Self(1 << 9);
+    /// `dv`.
+    pub const DV: Self = Self(1 << 10);
+    /// `dPdu`.
+    pub const DPDU: Self = Self(1 << 11);
+    /// `dPdv`.
+    pub const DPDV: Self = Self(1 << 12);
+    /// `Cs`.
+    pub const CS: Self = Self(1 << 13);
+    /// `Os`.
+    pub const OS: Self = Self(1 << 14);
+    /// Every global.
+    pub const ALL: Self = Self((1 << 15) - 1);
+
+    /// True when every global of `other` is in `self`.
+    #[inline(always)]
+    #[must_use]
+    pub const fn contains(self, other: Self) -> bool {
+        self.0 & other.0 == other.0
+    }
+
+    /// The globals in either set.
+    #[inline(always)]
+    #[must_use]
+    pub const fn union(self, other: Self) -> Self {
+        Self(self.0 | other.0)
+    }
+}
+
+impl core::ops::BitOr for GlobalSet {
+    type Output = Self;
+    #[inline(always)]
+    fn bitor(self, rhs: Self) -> Self {
+        self.union(rhs)
+    }
+}
+
+impl core::ops::BitOrAssign for GlobalSet {
+    #[inline(always)]
+    fn bitor_assign(&mut self, rhs: Self) {
+        *self = self.union(rhs);
+    }
+}
+
 /// The RSL global variables of a surface shading point, named as in RSL.
 #[allow(non_snake_case)]
 #[derive(Clone, Copy, Debug)]

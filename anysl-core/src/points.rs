@@ -6,7 +6,7 @@
 //! each point carries screen-space derivative seeds (a pixel footprint of about 1/256 of the
 //! sphere) that dual-number instantiations pick up and all others ignore.
 
-use crate::context::{Globals, PointContext};
+use crate::context::{GlobalSet, Globals, PointContext};
 use crate::exec::Exec;
 use crate::float::ShadingFloat;
 use crate::shader::{LightShader, SurfaceShader, SurfaceVisitor};
@@ -182,7 +182,17 @@ impl PointSet {
     /// When `i + F::LANES` exceeds [`PointSet::len`].
     #[inline(always)]
     pub fn load_globals<F: ShadingFloat>(&self, i: usize, g: &mut Globals<F>) {
+        self.load_globals_read(i, g, GlobalSet::ALL);
+    }
+
+    /// [`PointSet::load_globals`] of only the globals in `read` (the others keep their values).
+    ///
+    /// # Panics
+    /// When `i + F::LANES` exceeds [`PointSet::len`].
+    #[inline(always)]
+    pub fn load_globals_read<F: ShadingFloat>(&self, i: usize, g: &mut Globals<F>, read: GlobalSet) {
         assert!(i + F::LANES <= self.n, "points {i}..{} of {}", i + F::LANES, self.n);
+        let has = |x: GlobalSet| read.contains(x);
         let dpdx = self.load3::<F>(field::DPDX, i);
         let dpdy = self.load3::<F>(field::DPDY, i);
         let seeded = |v: Vec3<F>| {
@@ -194,19 +204,43 @@ impl PointSet {
             self.load(field::DTDX, i),
             self.load(field::DTDY, i),
         );
-        g.P = seeded(self.load3(field::P, i));
-        g.N = seeded(self.load3(field::N, i));
-        g.Ng = g.N;
-        g.I = seeded(self.load3(field::I, i));
+        if has(GlobalSet::P) {
+            g.P = seeded(self.load3(field::P, i));
+        }
+        if has(GlobalSet::N) {
+            g.N = seeded(self.load3(field::N, i));
+        }
+        if has(GlobalSet::NG) {
+            g.Ng = seeded(self.load3(field::N, i));
+        }
+        if has(GlobalSet::I) {
+            g.I = seeded(self.load3(field::I, i));
+        }
         g.E = Vec3::c(0.0, 0.0, 3.0);
-        g.s = self.load::<F>(field::S, i).with_derivs(dsdx, dsdy);
-        g.t = self.load::<F>(field::T, i).with_derivs(dtdx, dtdy);
-        g.u = self.load::<F>(field::U, i).with_derivs(dsdx, dsdy);
-        g.v = self.load::<F>(field::V, i).with_derivs(dtdx, dtdy);
-        g.du = self.load(field::DU, i);
-        g.dv = self.load(field::DV, i);
-        g.dPdu = self.load3(field::DPDU, i);
-        g.dPdv = self.load3(field::DPDV, i);
+        if has(GlobalSet::S) {
+            g.s = self.load::<F>(field::S, i).with_derivs(dsdx, dsdy);
+        }
+        if has(GlobalSet::T) {
+            g.t = self.load::<F>(field::T, i).with_derivs(dtdx, dtdy);
+        }
+        if has(GlobalSet::U) {
+            g.u = self.load::<F>(field::U, i).with_derivs(dsdx, dsdy);
+        }
+        if has(GlobalSet::V) {
+            g.v = self.load::<F>(field::V, i).with_derivs(dtdx, dtdy);
+        }
+        if has(GlobalSet::DU) {
+            g.du = self.load(field::DU, i);
+        }
+        if has(GlobalSet::DV) {
+            g.dv = self.load(field::DV, i);
+        }
+        if has(GlobalSet::DPDU) {
+            g.dPdu = self.load3(field::DPDU, i);
+        }
+        if has(GlobalSet::DPDV) {
+            g.dPdv = self.load3(field::DPDV, i);
+        }
         g.Cs = Color::c(1.0, 1.0, 1.0);
         g.Os = Color::c(1.0, 1.0, 1.0);
     }
@@ -264,11 +298,13 @@ where
             if self.set.len() < F::LANES {
                 return;
             }
-            // One context, its globals refilled in place per chunk.
+            // One context, its globals refilled in place per chunk: those the shader reads
+            // (all of them for a shader inlined here, where the unused loads fold away).
+            let read = shader.globals_read();
             let mut ctx = PointContext::new(self.set.globals::<F>(0), self.lights);
             let mut i = 0;
             while i + F::LANES <= self.set.len() {
-                self.set.load_globals(i, &mut ctx.globals);
+                self.set.load_globals_read(i, &mut ctx.globals, read);
                 let out = shader.shade(&mut ctx, &mut Exec::<F>::new());
                 let (ci, oi) = (out.Ci, out.Oi);
                 ci.r.store(&mut cr[i..]);

@@ -324,6 +324,15 @@ pub trait SurfaceShader: Shader {
     /// where type replacement happens.
     fn shade<F: ShadingFloat, C: ShadingContext<F>>(&self, ctx: &mut C, e: &mut Exec<F>) -> SurfaceOutput<F>;
 
+    /// The globals `shade` reads, through [`ShadingContext::globals`] or the context's own
+    /// use of them in `illuminance`, `ambient` and friends. A renderer may leave the others
+    /// holding any finite values. The default, every global, is always right; a shader that
+    /// knows better (a compiled `.sl` shader from its IR) saves the renderer work.
+    #[inline(always)]
+    fn globals_read(&self) -> crate::context::GlobalSet {
+        crate::context::GlobalSet::ALL
+    }
+
     /// Runs `v` on the concrete shader. A closed set of shaders (an enum dispatching by
     /// `match`) overrides this to pass its variant, so a renderer's whole inner loop is
     /// monomorphized — and the shader inlined into it — per concrete shader, with the `match`

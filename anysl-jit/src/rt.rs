@@ -509,13 +509,14 @@ unsafe extern "C" fn host_illuminance<F: ShadingFloat, C: ShadingContext<F>, G: 
         if cat_len == 0 { "" } else { core::str::from_utf8_unchecked(core::slice::from_raw_parts(cat, cat_len)) };
     let mut e = Exec::with_mask(m);
     ctx.illuminance(&mut e, category, p, cone, |e, l, cl| {
-        let mut buf = [0.0f32; 6 * MAX_STRIDE];
-        let mut o = HOut::<F, G>::new(buf.as_mut_ptr());
+        let mut buf = MaybeUninit::<[f32; 6 * MAX_STRIDE]>::uninit();
+        let buf: *mut f32 = buf.as_mut_ptr().cast();
+        let mut o = HOut::<F, G>::new(buf);
         o.v3(l);
         o.c3(cl);
         let mut mb = [0u32; 16];
         G::write_mask(cast::<F::Mask, G::Mask>(e.mask()), mb.as_mut_ptr());
-        body(env, mb.as_ptr(), buf.as_ptr());
+        body(env, mb.as_ptr(), buf);
     });
 }
 
@@ -540,11 +541,10 @@ unsafe extern "C" fn host_diffuse<F: ShadingFloat, C: ShadingContext<F>, G: JitF
 ) {
     let hc = &mut *ctx.cast::<HostCtx<F, C>>();
     let m = cast::<G::Mask, F::Mask>(G::read_mask(mask));
-    let mut e = Exec::with_mask(m);
     let n = HIn::<F, G>::new(inp).v3();
     let d = match hc.lit.take() {
         Some((n0, m0, d)) if same(n, n0, m, m0) => d,
-        _ => diffuse(hc.ctx, &mut e, n),
+        _ => diffuse(hc.ctx, &mut Exec::with_mask(m), n),
     };
     HOut::<F, G>::new(out).c3(d);
 }
@@ -558,10 +558,9 @@ unsafe extern "C" fn host_specular<F: ShadingFloat, C: ShadingContext<F>, G: Jit
 ) {
     let hc = &mut *ctx.cast::<HostCtx<F, C>>();
     let m = cast::<G::Mask, F::Mask>(G::read_mask(mask));
-    let mut e = Exec::with_mask(m);
     let mut i = HIn::<F, G>::new(inp);
     let (n, v, r) = (i.v3(), i.v3(), i.f());
-    let (d, sp) = diffuse_specular(hc.ctx, &mut e, n, v, r);
+    let (d, sp) = diffuse_specular(hc.ctx, &mut Exec::with_mask(m), n, v, r);
     hc.lit = Some((n, m, d));
     HOut::<F, G>::new(out).c3(sp);
 }
@@ -574,10 +573,10 @@ unsafe extern "C" fn host_phong<F: ShadingFloat, C: ShadingContext<F>, G: JitFlo
     _: u32,
 ) {
     let ctx = &mut *(*ctx.cast::<HostCtx<F, C>>()).ctx;
-    let mut e = Exec::with_mask(cast::<G::Mask, F::Mask>(G::read_mask(mask)));
+    let m = cast::<G::Mask, F::Mask>(G::read_mask(mask));
     let mut i = HIn::<F, G>::new(inp);
     let (n, v, r) = (i.v3(), i.v3(), i.f());
-    HOut::<F, G>::new(out).c3(phong(ctx, &mut e, n, v, r));
+    HOut::<F, G>::new(out).c3(phong(ctx, &mut Exec::with_mask(m), n, v, r));
 }
 
 unsafe extern "C" fn host_trace<F: ShadingFloat, C: ShadingContext<F>, G: JitFloat>(

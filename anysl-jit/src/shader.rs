@@ -170,6 +170,12 @@ impl Shader for JitShader {
 }
 
 impl SurfaceShader for JitShader {
+    /// As the interpreter's: the same module (the compiled code loads every global slot at
+    /// entry and hands `P` to the light loops, like the interpreter).
+    fn globals_read(&self) -> anysl_core::GlobalSet {
+        self.interp.globals_read()
+    }
+
     fn shade<F: ShadingFloat, C: ShadingContext<F>>(&self, ctx: &mut C, e: &mut Exec<F>) -> SurfaceOutput<F> {
         if let Some(v) = variant_of::<F>() {
             if let Ok(cs) = self.variant_ref(v) {

@@ -80,3 +80,99 @@ fn inline_noise_matches_library_noise() {
         }
     }
 }
+
+/// What `globals_read` leaves out is really not read: with every other global set to NaN,
+/// the interpreter and the JIT (f32 and x8) give the same results as with all of them.
+#[test]
+fn globals_outside_globals_read_are_not_read() {
+    use anysl_core::{Exec, GlobalSet, Globals, PointContext, Shader, SurfaceShader};
+    let set = PointSet::random(64, 5);
+    let lights = table1_lights();
+    let mut files: Vec<PathBuf> = std::fs::read_dir(rsl_dir()).unwrap().map(|e| e.unwrap().path()).collect();
+    files.extend(std::fs::read_dir(rsl_dir().join("standard")).unwrap().map(|e| e.unwrap().path()));
+    let mut checked = 0;
+    for path in files.iter().filter(|p| p.extension().is_some_and(|x| x == "sl")) {
+        let Ok(jit) = JitShader::from_file(path, &[rsl_dir().join("include")], JitOptions::default()) else {
+            continue;
+        };
+        if jit.meta().kind != anysl_core::ShaderKind::Surface {
+            continue;
+        }
+        let read = jit.globals_read();
+        fn poison<F: ShadingFloat>(g: &mut Globals<F>, read: GlobalSet) {
+            let nan = F::c(f64::NAN);
+            let nan3 = anysl_core::Vec3::new(nan, nan, nan);
+            let fields: [(GlobalSet, &mut anysl_core::Vec3<F>); 7] = [
+                (GlobalSet::P, &mut g.P),
+                (GlobalSet::N, &mut g.N),
+                (GlobalSet::NG, &mut g.Ng),
+                (GlobalSet::I, &mut g.I),
+                (GlobalSet::E, &mut g.E),
+                (GlobalSet::DPDU, &mut g.dPdu),
+                (GlobalSet::DPDV, &mut g.dPdv),
+            ];
+            for (bit, f) in fields {
+                if !read.contains(bit) {
+                    *f = nan3;
+                }
+            }
+            for (bit, f) in [
+                (GlobalSet::S, &mut g.s),
+                (GlobalSet::T, &mut g.t),
+                (GlobalSet::U, &mut g.u),
+                (GlobalSet::V, &mut g.v),
+                (GlobalSet::DU, &mut g.du),
+                (GlobalSet::DV, &mut g.dv),
+            ] {
+                if !read.contains(bit) {
+                    *f = nan;
+                }
+            }
+            if !read.contains(GlobalSet::CS) {
+                g.Cs = anysl_core::Color::new(nan, nan, nan);
+            }
+            if !read.contains(GlobalSet::OS) {
+                g.Os = anysl_core::Color::new(nan, nan, nan);
+            }
+        }
+        fn run<F: ShadingFloat, S: SurfaceShader>(
+            s: &S,
+            set: &PointSet,
+            lights: &[Light],
+            read: Option<GlobalSet>,
+        ) -> Vec<f64> {
+            let mut out = Vec::new();
+            for i in (0..set.len()).step_by(F::LANES) {
+                let mut g = set.globals::<F>(i);
+                if let Some(r) = read {
+                    poison(&mut g, r);
+                }
+                let mut ctx = PointContext::new(g, lights);
+                let o = s.shade(&mut ctx, &mut Exec::new());
+                for c in [o.Ci.r, o.Ci.g, o.Ci.b, o.Oi.r, o.Oi.g, o.Oi.b] {
+                    out.extend((0..F::LANES).map(|l| c.lane(l)));
+                }
+            }
+            out
+        }
+        let name = path.display();
+        let same = |a: Vec<f64>, b: Vec<f64>| a.iter().zip(&b).all(|(x, y)| x.to_bits() == y.to_bits());
+        assert!(
+            same(
+                run::<f32, _>(jit.interp(), &set, &lights, None),
+                run::<f32, _>(jit.interp(), &set, &lights, Some(read))
+            ),
+            "{name}: interpreter reads a global outside {read:?}"
+        );
+        assert!(
+            same(run::<f32, _>(&jit, &set, &lights, None), run::<f32, _>(&jit, &set, &lights, Some(read))),
+            "{name}: JIT f32 reads a global outside {read:?}"
+        );
+        assert!(
+            same(run::<F32x8, _>(&jit, &set, &lights, None), run::<F32x8, _>(&jit, &set, &lights, Some(read))),
+            "{name}: JIT x8 reads a global outside {read:?}"
+        );
+        checked += 1;
+    }
+    assert!(checked >= 15, "only {checked} surface shaders checked");
+}

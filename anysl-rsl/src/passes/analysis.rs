@@ -241,3 +241,61 @@ pub fn analyze_derivatives(func: &mut Function) -> bool {
     }
     any
 }
+
+/// Built-ins that read the shading context's globals themselves (not only their arguments):
+/// the light loops use `P`, two-argument `faceforward` uses `Ng`, `depth` and `random` use
+/// `P`; the derivative and texture built-ins use the parametric frame and footprint, so they
+/// count as reading every global.
+const CONTEXT_P_BUILTINS: &[&str] = &["ambient", "diffuse", "specular", "phong", "random", "depth"];
+const CONTEXT_ALL_BUILTINS: &[&str] = &["Du", "Dv", "Deriv", "calculatenormal", "texture", "environment", "shadow"];
+
+/// The globals a compiled shader reads — what a renderer must fill in before running it (see
+/// `anysl_core::SurfaceShader::globals_read`): every global variable the code touches (back
+/// ends load each one at entry), `Os` (the default `Oi`), `P` and `N` for displacement
+/// shaders (their outputs default to them), and what the context-reading built-ins use.
+#[must_use]
+pub fn globals_read(module: &crate::ir::Module) -> anysl_core::GlobalSet {
+    use crate::ir::Global as G;
+    use anysl_core::GlobalSet as S;
+    let func = &module.func;
+    let mut read = S::OS;
+    if module.kind == crate::ir::ShaderKind::Displacement {
+        read |= S::P | S::N;
+    }
+    for s in &func.slots {
+        if let SlotKind::Global(g) = s.kind {
+            read |= match g {
+                G::P => S::P,
+                G::N => S::N,
+                G::Ng => S::NG,
+                G::I => S::I,
+                G::E => S::E,
+                G::Cs => S::CS,
+                G::Os | G::Oi => S::OS,
+                G::S => S::S,
+                G::T => S::T,
+                G::U => S::U,
+                G::V => S::V,
+                G::Du => S::DU,
+                G::Dv => S::DV,
+                G::DPdu => S::DPDU,
+                G::DPdv => S::DPDV,
+                _ => S::NONE,
+            };
+        }
+    }
+    walk(&func.body, &mut |node| {
+        if let Node::Inst(v) = node {
+            if let Op::Call { name, .. } = &func.inst(*v).op {
+                if CONTEXT_ALL_BUILTINS.contains(&name.as_str()) {
+                    read = S::ALL;
+                } else if CONTEXT_P_BUILTINS.contains(&name.as_str()) {
+                    read |= S::P;
+                } else if name == "faceforward" && func.inst(*v).args.len() == 2 {
+                    read |= S::NG;
+                }
+            }
+        }
+    });
+    read
+}

@@ -841,6 +841,10 @@ impl InterpShader {
 }
 
 impl SurfaceShader for InterpShader {
+    fn globals_read(&self) -> anysl_core::GlobalSet {
+        self.program.globals_read
+    }
+
     fn shade<F: ShadingFloat, C: ShadingContext<F>>(&self, ctx: &mut C, e: &mut Exec<F>) -> SurfaceOutput<F> {
         let p = &*self.program;
         let fr = run_batch::<F, C>(p, &self.values, std::slice::from_mut(ctx), &[e.mask()]);

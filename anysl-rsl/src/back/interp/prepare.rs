@@ -182,6 +182,8 @@ pub struct Program {
     pub(crate) params: Vec<Loc>,
     /// True when some value needs derivatives.
     pub uses_derivatives: bool,
+    /// The globals the shader reads ([`crate::passes::analysis::globals_read`]).
+    pub globals_read: anysl_core::GlobalSet,
 }
 
 struct Alloc {
@@ -234,6 +236,7 @@ impl Program {
             globals: Vec::new(),
             params: vec![Loc::None; module.params.len()],
             uses_derivatives: func.insts.iter().any(|i| i.needs_derivs),
+            globals_read: crate::passes::analysis::globals_read(&module),
         };
         for (i, s) in func.slots.iter().enumerate() {
             match &s.kind {
