@@ -124,6 +124,25 @@ impl GlobalsLayout {
         Self { comp, dual }
     }
 }
+/// True when a `SurfaceOutput<G>` lies in memory exactly as the compiled code writes the
+/// first [`OUTPUT_ORDER`] entries (`Ci`, then `Oi`; r, g, b; each value `G::STRIDE` floats
+/// with dual parts `lanes` and `2·lanes` floats after the value), so the code can write the
+/// caller's return value in place. Constant for each `G` (the check folds away).
+#[must_use]
+pub fn output_layout_is_buffer<G: JitFloat>() -> bool {
+    use anysl_core::{Color, SurfaceOutput};
+    use core::mem::{offset_of, size_of};
+    let v = G::STRIDE * 4;
+    let lane_bytes = G::BASE_LANES * 4;
+    size_of::<G>() == v
+        && offset_of!(SurfaceOutput<G>, Ci) == 0
+        && offset_of!(SurfaceOutput<G>, Oi) == 3 * v
+        && offset_of!(Color<G>, r) == 0
+        && offset_of!(Color<G>, g) == v
+        && offset_of!(Color<G>, b) == 2 * v
+        && (!G::DUAL || G::dual_offsets() == [lane_bytes, 2 * lane_bytes])
+}
+
 /// Order of the outputs: `Ci`, `Oi` (surface), `P`, `N` (displacement).
 pub const OUTPUT_ORDER: [(anysl_rsl::ir::Global, usize); 4] = {
     use anysl_rsl::ir::Global as G;

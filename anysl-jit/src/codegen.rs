@@ -1001,8 +1001,9 @@ impl<'c, 'm> Cg<'c, 'm> {
         self.b.build_unconditional_branch(exit_bb).expect("br");
         let _ = after;
         self.b.position_at_end(exit_bb);
-        // Outputs.
-        for (gl, off) in abi::OUTPUT_ORDER {
+        // Outputs: `Ci`, `Oi`, and for displacement shaders `P`, `N` (the only ones read).
+        let outputs = if module.kind == ir::ShaderKind::Displacement { 4 } else { 2 };
+        for (gl, off) in abi::OUTPUT_ORDER.into_iter().take(outputs) {
             let vals = match func.global_slot(gl) {
                 Some(s) => match self.load_slot(s) {
                     Val::Num(c) => c,

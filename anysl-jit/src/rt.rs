@@ -463,23 +463,27 @@ fn same<F: ShadingFloat>(a: Vec3<F>, b: Vec3<F>, ma: F::Mask, mb: F::Mask) -> bo
 pub struct HostTable<F, C, G>(PhantomData<(F, C, G)>);
 
 impl<F: ShadingFloat, C: ShadingContext<F>, G: JitFloat> HostTable<F, C, G> {
-    /// The table (indexed by [`crate::abi::host`]).
+    /// The table (indexed by [`crate::abi::host`]): one static array per instantiation.
+    pub const TABLE: [*const (); crate::abi::host::LEN] = [
+        host_illuminance::<F, C, G> as *const (),
+        host_ambient::<F, C, G> as *const (),
+        host_diffuse::<F, C, G> as *const (),
+        host_specular::<F, C, G> as *const (),
+        host_phong::<F, C, G> as *const (),
+        host_trace::<F, C, G> as *const (),
+        host_du::<F, C, G> as *const (),
+        host_dv::<F, C, G> as *const (),
+        host_deriv::<F, C, G> as *const (),
+        host_calcnormal::<F, C, G> as *const (),
+        host_random::<F, C, G> as *const (),
+    ];
+
+    /// [`HostTable::TABLE`] as the compiled code reads it (addresses as `usize`).
     #[inline(always)]
     #[must_use]
-    pub fn table() -> [usize; crate::abi::host::LEN] {
-        [
-            host_illuminance::<F, C, G> as *const () as usize,
-            host_ambient::<F, C, G> as *const () as usize,
-            host_diffuse::<F, C, G> as *const () as usize,
-            host_specular::<F, C, G> as *const () as usize,
-            host_phong::<F, C, G> as *const () as usize,
-            host_trace::<F, C, G> as *const () as usize,
-            host_du::<F, C, G> as *const () as usize,
-            host_dv::<F, C, G> as *const () as usize,
-            host_deriv::<F, C, G> as *const () as usize,
-            host_calcnormal::<F, C, G> as *const () as usize,
-            host_random::<F, C, G> as *const () as usize,
-        ]
+    pub fn table() -> *const usize {
+        let t: &'static [*const (); crate::abi::host::LEN] = &Self::TABLE;
+        t.as_ptr().cast()
     }
 }
 

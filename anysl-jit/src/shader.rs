@@ -1,7 +1,7 @@
 //! [`JitShader`]: a JIT-compiled `.sl` surface shader behind the same [`SurfaceShader`]
 //! boundary as every other shader.
 
-use crate::abi::{JitFloat, OUTPUT_VALUES};
+use crate::abi::JitFloat;
 use crate::rt::{cast, HostCtx, HostTable};
 use crate::{compile, CompiledShader, JitError, JitOptions, Variant};
 use anysl_ad::Dual;
@@ -130,26 +130,26 @@ impl JitShader {
         ctx: &mut C,
         e: &Exec<F>,
     ) -> SurfaceOutput<F> {
-        // Every output is written by the compiled code: no need to zero the buffer.
-        let mut obuf_m = std::mem::MaybeUninit::<[f32; OUTPUT_VALUES * 48]>::uninit();
-        let obuf: *mut f32 = obuf_m.as_mut_ptr().cast();
+        // The compiled code writes every output of a surface shader (`Ci`, `Oi`) straight into
+        // the return value, which has the layout of its output buffer.
+        assert!(crate::abi::output_layout_is_buffer::<G>(), "SurfaceOutput layout differs from the JIT's");
+        let mut out = std::mem::MaybeUninit::<SurfaceOutput<G>>::uninit();
         let mut mbuf = [0u32; 16];
         // The compiled code reads the globals in place, at the offsets of `Globals<F>`'s
         // layout (`abi::GlobalsLayout`), while the host callbacks hold the context mutably:
         // they never write the globals (a `ShadingContext` hands them out only by shared
         // reference), and no Rust code reads through this pointer after they ran.
         let gbuf = (ctx.globals() as *const Globals<F>).cast::<f32>();
-        let st = G::STRIDE;
         unsafe { G::write_mask(cast::<F::Mask, G::Mask>(e.mask()), mbuf.as_mut_ptr()) };
         let host = HostTable::<F, C, G>::table();
         let mut hc = HostCtx { ctx, lit: None };
         // SAFETY: the buffers have the layout the compiled code expects; `ctx` is a `C`, which
         // is what the host table's shims take.
         unsafe {
-            (cs.f)(gbuf, obuf, mbuf.as_ptr(), (&mut hc as *mut HostCtx<F, C>).cast(), host.as_ptr());
+            (cs.f)(gbuf, out.as_mut_ptr().cast(), mbuf.as_ptr(), (&mut hc as *mut HostCtx<F, C>).cast(), host);
         }
-        let get = |k: usize| -> F { unsafe { cast::<G, F>(G::read(obuf.add(k * st))) } };
-        SurfaceOutput { Ci: Color::new(get(0), get(1), get(2)), Oi: Color::new(get(3), get(4), get(5)) }
+        // SAFETY: the compiled code wrote all six components (F and G are the same type).
+        cast::<SurfaceOutput<G>, SurfaceOutput<F>>(unsafe { out.assume_init() })
     }
 }
 

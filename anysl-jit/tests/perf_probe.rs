@@ -15,7 +15,8 @@ fn rsl_dir() -> PathBuf {
 #[ignore]
 fn probe() {
     let set = PointSet::random(1 << 15, 1);
-    let lights = table1_lights();
+    // `LIGHTS=none` shades without lights (the cost of everything but the light loops).
+    let lights = if std::env::var("LIGHTS").is_ok_and(|v| v == "none") { Vec::new() } else { table1_lights() };
     // `NOISE=call` measures the library-call noise instead of the inline IR.
     let inline_noise = std::env::var("NOISE").map_or(true, |v| v != "call");
     let opts = JitOptions { inline_noise, ..JitOptions::default() };
@@ -96,12 +97,15 @@ fn spin_x8() {
         std::fs::write(format!("{dir}/code.bin"), bytes).unwrap();
         std::fs::write(format!("{dir}/addr"), format!("{addr:#x}")).unwrap();
     }
+    // `LANES=1` spins the scalar variants instead.
+    let scalar = std::env::var("LANES").is_ok_and(|v| v == "1");
     let t = Instant::now();
     while t.elapsed().as_secs_f64() < 3.0 {
-        if aot {
-            shade_points::<F32x8, _, Light>(&s, &lights, &set, &mut out);
-        } else {
-            shade_points::<F32x8, _, Light>(&jit, &lights, &set, &mut out);
+        match (aot, scalar) {
+            (true, false) => shade_points::<F32x8, _, Light>(&s, &lights, &set, &mut out),
+            (false, false) => shade_points::<F32x8, _, Light>(&jit, &lights, &set, &mut out),
+            (true, true) => shade_points::<f32, _, Light>(&s, &lights, &set, &mut out),
+            (false, true) => shade_points::<f32, _, Light>(&jit, &lights, &set, &mut out),
         }
     }
 }
