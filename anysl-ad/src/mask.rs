@@ -114,6 +114,14 @@ impl<M: Mask> Mask for IMask<M> {
     fn lane(self, i: usize) -> bool {
         self.possibly_true.lane(i)
     }
+    #[inline(always)]
+    fn from_bits(bits: u32) -> Self {
+        Self::exact(M::from_bits(bits))
+    }
+    #[inline(always)]
+    fn to_bits(self) -> u32 {
+        self.possibly_true.to_bits()
+    }
     /// Surely-true lanes take `a`, surely-false lanes `b`, "maybe" lanes whatever either
     /// could be (the hull of both truth values).
     #[inline(always)]

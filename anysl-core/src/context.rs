@@ -116,6 +116,46 @@ pub struct Globals<F> {
     pub Os: Color<F>,
 }
 
+impl<F: ShadingFloat> Globals<F> {
+    /// Sets every global outside `read` to NaN: shading with the result shows whether a
+    /// shader's [`SurfaceShader::globals_read`](crate::SurfaceShader::globals_read) is right
+    /// (the tests compare it bit for bit with shading the intact globals).
+    pub fn poison_except(&mut self, read: GlobalSet) {
+        let nan = F::c(f64::NAN);
+        let nan3 = Vec3::new(nan, nan, nan);
+        for (bit, v) in [
+            (GlobalSet::P, &mut self.P),
+            (GlobalSet::N, &mut self.N),
+            (GlobalSet::NG, &mut self.Ng),
+            (GlobalSet::I, &mut self.I),
+            (GlobalSet::E, &mut self.E),
+            (GlobalSet::DPDU, &mut self.dPdu),
+            (GlobalSet::DPDV, &mut self.dPdv),
+        ] {
+            if !read.contains(bit) {
+                *v = nan3;
+            }
+        }
+        for (bit, v) in [
+            (GlobalSet::S, &mut self.s),
+            (GlobalSet::T, &mut self.t),
+            (GlobalSet::U, &mut self.u),
+            (GlobalSet::V, &mut self.v),
+            (GlobalSet::DU, &mut self.du),
+            (GlobalSet::DV, &mut self.dv),
+        ] {
+            if !read.contains(bit) {
+                *v = nan;
+            }
+        }
+        for (bit, c) in [(GlobalSet::CS, &mut self.Cs), (GlobalSet::OS, &mut self.Os)] {
+            if !read.contains(bit) {
+                *c = Color::new(nan, nan, nan);
+            }
+        }
+    }
+}
+
 impl<F: Copy> Globals<F> {
     /// The same globals with every number transformed by `f` (e.g. to change the number type,
     /// or to step along derivative seeds).

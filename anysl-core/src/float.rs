@@ -35,6 +35,14 @@ pub trait Mask:
     }
     /// Lane `i` is (possibly) true.
     fn lane(self, i: usize) -> bool;
+    /// The mask whose lane `i` is bit `i` of `bits` (higher bits ignored): how renderers turn
+    /// the lane sets they track as integers into masks.
+    fn from_bits(bits: u32) -> Self;
+    /// Bit `i` set where lane `i` is (possibly) true: [`Mask::from_bits`] reversed.
+    #[inline(always)]
+    fn to_bits(self) -> u32 {
+        (0..Self::LANES).filter(|&i| self.lane(i)).fold(0, |b, i| b | 1 << i)
+    }
     /// Lane-wise choice between two masks.
     #[inline(always)]
     fn select_mask(m: Self, a: Self, b: Self) -> Self {
@@ -59,6 +67,14 @@ impl Mask for bool {
     #[inline(always)]
     fn lane(self, _i: usize) -> bool {
         self
+    }
+    #[inline(always)]
+    fn from_bits(bits: u32) -> Self {
+        bits & 1 != 0
+    }
+    #[inline(always)]
+    fn to_bits(self) -> u32 {
+        u32::from(self)
     }
     #[inline(always)]
     fn select_mask(m: Self, a: Self, b: Self) -> Self {

@@ -439,6 +439,17 @@ macro_rules! simd_width {
                 self.to_bitmask() & (1 << i) != 0
             }
             #[inline(always)]
+            fn from_bits(bits: u32) -> Self {
+                // Lane i tests bit i: splat, keep one bit per lane, compare (three instructions).
+                let lane_bit = wide::$wu::from(core::array::from_fn::<u32, $lanes, _>(|i| 1 << i));
+                let hit = (wide::$wu::splat(bits) & lane_bit).simd_eq(lane_bit);
+                Self(wide::bytemuck::cast(hit))
+            }
+            #[inline(always)]
+            fn to_bits(self) -> u32 {
+                self.to_bitmask()
+            }
+            #[inline(always)]
             fn select_mask(m: Self, a: Self, b: Self) -> Self {
                 Self(m.0.select(a.0, b.0))
             }

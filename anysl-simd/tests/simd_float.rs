@@ -389,6 +389,10 @@ where
             assert_eq!(not.lane(i), !a[i]);
             assert_eq!(sel.lane(i), if a[i] { b[i] } else { !a[i] });
         }
+        // Bit sets: bit i is lane i, both ways (bits above the lanes ignored).
+        let bits = a.iter().enumerate().fold(0u32, |m, (i, &x)| m | u32::from(x) << i);
+        assert_eq!(ma.to_bits(), bits);
+        assert_eq!(<F::Mask as Mask>::from_bits(bits | rng.u32() << N) == ma, true, "from_bits({bits:#x})");
         assert_eq!(mb.any(), b.iter().any(|&x| x));
         assert_eq!(mb.all(), b.iter().all(|&x| x));
         assert_eq!(mb.none(), !b.iter().any(|&x| x));

@@ -10,7 +10,7 @@
 use crate::scene::{Scene, SurfaceHit};
 use anysl_ad::Dual;
 use anysl_core::{
-    in_cone, run_illuminance, sum_ambient, Color, Emission, Exec, Globals, LightOutput, LightShader, Mask,
+    in_cone, run_illuminance, sum_ambient, Color, Emission, Exec, GlobalSet, Globals, LightOutput, LightShader, Mask,
     ShadingContext, ShadingFloat, SurfaceOutput, SurfaceShader, Vec3,
 };
 use glam::Vec3A;
@@ -77,34 +77,18 @@ pub struct SceneContext<'a, F: ShadingFloat, S, L> {
     depth: Depth,
 }
 
-/// A [`ShadingFloat`] whose lane `i` is 1 where bit `i` of `bits` is set, else 0.
-#[inline(always)]
-fn lane_flags<F: ShadingFloat>(bits: u32) -> F {
-    let mut buf = [0.0f32; MAX_LANES];
-    for (i, b) in buf.iter_mut().enumerate().take(F::LANES) {
-        *b = ((bits >> i) & 1) as f32;
-    }
-    F::load(&buf)
-}
-
 /// The lane mask of `bits`.
 #[inline(always)]
 #[must_use]
 pub fn lane_mask<F: ShadingFloat>(bits: u32) -> F::Mask {
-    lane_flags::<F>(bits).gt(F::c(0.5))
+    F::Mask::from_bits(bits)
 }
 
 /// The bits of the lanes of `m` that are (possibly) set.
 #[inline(always)]
 #[must_use]
 pub fn mask_bits<F: ShadingFloat>(m: F::Mask) -> u32 {
-    let mut bits = 0;
-    for i in 0..F::LANES {
-        if m.lane(i) {
-            bits |= 1 << i;
-        }
-    }
-    bits
+    m.to_bits()
 }
 
 /// Lane `i` of a vector as a glam vector.
@@ -113,65 +97,120 @@ fn vec_lane<F: ShadingFloat>(v: &Vec3<F>, i: usize) -> Vec3A {
     Vec3A::new(v.x.lane(i) as f32, v.y.lane(i) as f32, v.z.lane(i) as f32)
 }
 
-/// One field of the hits as lanes; lanes outside `group` read lane `first` (so that masked
-/// lanes hold finite values).
-#[inline(always)]
-fn field<F: ShadingFloat>(hits: &[SurfaceHit], src: &[usize; MAX_LANES], f: impl Fn(&SurfaceHit) -> f32) -> F {
-    let mut buf = [0.0f32; MAX_LANES];
-    for i in 0..F::LANES {
-        buf[i] = f(&hits[src[i]]);
-    }
-    F::load(&buf)
-}
-
-#[inline(always)]
-fn field3<F: ShadingFloat>(hits: &[SurfaceHit], src: &[usize; MAX_LANES], f: impl Fn(&SurfaceHit) -> Vec3A) -> Vec3<F> {
-    Vec3::new(field(hits, src, |h| f(h).x), field(hits, src, |h| f(h).y), field(hits, src, |h| f(h).z))
-}
-
 /// The globals of the hits in `group` (structure of arrays), seeded with screen-space
-/// derivatives when `F` carries them.
+/// derivatives when `F` carries them. Lanes outside `group` read the hit of lane `first`,
+/// so that masked lanes hold finite values.
 #[inline(always)]
 #[must_use]
 pub fn gather_globals<F: ShadingFloat>(hits: &[SurfaceHit], group: u32, first: usize) -> Globals<F> {
-    let mut src = [first; MAX_LANES];
-    for (i, s) in src.iter_mut().enumerate().take(F::LANES) {
-        if (group >> i) & 1 != 0 {
-            *s = i;
+    gather_globals_read(hits, group, first, GlobalSet::ALL)
+}
+
+/// Number of hit components [`gather_globals_read`] transposes.
+const COMPONENTS: usize = 43;
+
+/// [`gather_globals`] of only the globals in `read` (see
+/// [`SurfaceShader::globals_read`]); the others are zero.
+///
+/// The hits are transposed in two passes: every lane's components are written to a scratch
+/// block first, then each component is loaded as one vector. Loading a vector right after
+/// writing its lanes one by one would stall on store forwarding for every component.
+#[inline(always)]
+#[must_use]
+pub fn gather_globals_read<F: ShadingFloat>(
+    hits: &[SurfaceHit],
+    group: u32,
+    first: usize,
+    read: GlobalSet,
+) -> Globals<F> {
+    debug_assert!(F::LANES <= MAX_LANES && hits.len() >= F::LANES);
+    let mut scratch = core::mem::MaybeUninit::<[[f32; MAX_LANES]; COMPONENTS]>::uninit();
+    let block = scratch.as_mut_ptr().cast::<[f32; MAX_LANES]>();
+    let derivs = F::HAS_DERIVS;
+    let has = |x: GlobalSet| read.contains(x);
+    for i in 0..F::LANES {
+        let h = &hits[if (group >> i) & 1 != 0 { i } else { first }];
+        // SAFETY: `c < COMPONENTS` and `i < F::LANES <= MAX_LANES`: inside the block.
+        let put = |c: usize, v: f32| unsafe { (*block.add(c))[i] = v };
+        let put3 = |c: usize, v: Vec3A| {
+            put(c, v.x);
+            put(c + 1, v.y);
+            put(c + 2, v.z);
+        };
+        if has(GlobalSet::P) {
+            put3(0, h.p);
+        }
+        if has(GlobalSet::N) {
+            put3(3, h.n);
+        }
+        if has(GlobalSet::NG) {
+            put3(6, h.ng);
+        }
+        if has(GlobalSet::I) {
+            put3(9, h.i);
+        }
+        if has(GlobalSet::E) {
+            put3(12, h.e);
+        }
+        if has(GlobalSet::S) || has(GlobalSet::U) {
+            put(15, h.s);
+        }
+        if has(GlobalSet::T) || has(GlobalSet::V) {
+            put(16, h.t);
+        }
+        if has(GlobalSet::DU) {
+            put(17, h.du);
+        }
+        if has(GlobalSet::DV) {
+            put(18, h.dv);
+        }
+        if has(GlobalSet::DPDU) {
+            put3(19, h.dpdu);
+        }
+        if has(GlobalSet::DPDV) {
+            put3(22, h.dpdv);
+        }
+        if derivs {
+            put3(25, h.dpdx);
+            put3(28, h.dpdy);
+            put3(31, h.dndx);
+            put3(34, h.dndy);
+            put(37, h.dsdx);
+            put(38, h.dsdy);
+            put(39, h.dtdx);
+            put(40, h.dtdy);
         }
     }
-    let mut p = field3::<F>(hits, &src, |h| h.p);
-    let mut n = field3::<F>(hits, &src, |h| h.n);
-    let mut i = field3::<F>(hits, &src, |h| h.i);
-    let mut s = field::<F>(hits, &src, |h| h.s);
-    let mut t = field::<F>(hits, &src, |h| h.t);
-    if F::HAS_DERIVS {
-        let seed3 = |v: Vec3<F>, dx: Vec3<F>, dy: Vec3<F>| {
-            Vec3::new(v.x.with_derivs(dx.x, dy.x), v.y.with_derivs(dx.y, dy.y), v.z.with_derivs(dx.z, dy.z))
-        };
-        let dpdx = field3::<F>(hits, &src, |h| h.dpdx);
-        let dpdy = field3::<F>(hits, &src, |h| h.dpdy);
-        p = seed3(p, dpdx, dpdy);
-        // The eye is fixed, so I = P − E changes like P.
-        i = seed3(i, dpdx, dpdy);
-        n = seed3(n, field3(hits, &src, |h| h.dndx), field3(hits, &src, |h| h.dndy));
-        s = s.with_derivs(field(hits, &src, |h| h.dsdx), field(hits, &src, |h| h.dsdy));
-        t = t.with_derivs(field(hits, &src, |h| h.dtdx), field(hits, &src, |h| h.dtdy));
-    }
+    // SAFETY: component `c`'s first `F::LANES` values were all written above (for every
+    // component read below: the same conditions guard the writes and the reads).
+    let ld = |c: usize| -> F { F::load(unsafe { core::slice::from_raw_parts(block.add(c).cast::<f32>(), F::LANES) }) };
+    let ld3 = |c: usize| Vec3::new(ld(c), ld(c + 1), ld(c + 2));
+    let zero3 = Vec3::splat(F::c(0.0));
+    let pick3 = |bit: GlobalSet, c: usize| if has(bit) { ld3(c) } else { zero3 };
+    let seed = |v: F, dx: usize, dy: usize| if derivs { v.with_derivs(ld(dx), ld(dy)) } else { v };
+    let seed3 = |v: Vec3<F>, dx: usize, dy: usize| {
+        Vec3::new(seed(v.x, dx, dy), seed(v.y, dx + 1, dy + 1), seed(v.z, dx + 2, dy + 2))
+    };
+    let (p, n, i) = (pick3(GlobalSet::P, 0), pick3(GlobalSet::N, 3), pick3(GlobalSet::I, 9));
+    let st = |bits: GlobalSet, c: usize| if bits.0 & read.0 != 0 { ld(c) } else { F::c(0.0) };
+    let s = st(GlobalSet::S.union(GlobalSet::U), 15);
+    let t = st(GlobalSet::T.union(GlobalSet::V), 16);
+    let (s, t) = (seed(s, 37, 38), seed(t, 39, 40));
     Globals {
-        P: p,
-        N: n,
-        Ng: field3(hits, &src, |h| h.ng),
-        I: i,
-        E: field3(hits, &src, |h| h.e),
+        // The eye is fixed, so I = P − E changes like P.
+        P: seed3(p, 25, 28),
+        N: seed3(n, 31, 34),
+        Ng: pick3(GlobalSet::NG, 6),
+        I: seed3(i, 25, 28),
+        E: pick3(GlobalSet::E, 12),
         s,
         t,
         u: s,
         v: t,
-        du: field(hits, &src, |h| h.du),
-        dv: field(hits, &src, |h| h.dv),
-        dPdu: field3(hits, &src, |h| h.dpdu),
-        dPdv: field3(hits, &src, |h| h.dpdv),
+        du: st(GlobalSet::DU, 17),
+        dv: st(GlobalSet::DV, 18),
+        dPdu: pick3(GlobalSet::DPDU, 19),
+        dPdv: pick3(GlobalSet::DPDV, 22),
         Cs: Color::c(1.0, 1.0, 1.0),
         Os: Color::c(1.0, 1.0, 1.0),
     }
@@ -376,7 +415,8 @@ where
 {
     let shader = &tracer.scene.surfaces[lanes.hits[first].surface as usize];
     let mask = lane_mask::<F>(group);
-    let mut ctx = SceneContext { globals: gather_globals::<F>(lanes.hits, group, first), tracer, depth };
+    let read = shader.globals_read();
+    let mut ctx = SceneContext { globals: gather_globals_read::<F>(lanes.hits, group, first, read), tracer, depth };
     let mut e = Exec::with_mask(mask);
     let out = shader.shade(&mut ctx, &mut e);
     composite::<F, S, L>(tracer, lanes, group, depth, out)

@@ -2,6 +2,11 @@
 //! filtered square wave.
 
 use anysl_core::prelude::*;
+use anysl_core::GlobalSet;
+
+/// The globals every classic surface reads: `N` and `I` for the view frame, `P` for the light
+/// loops, `Os` for the opacity.
+pub(crate) const VIEW_GLOBALS: GlobalSet = GlobalSet::P.union(GlobalSet::N).union(GlobalSet::I).union(GlobalSet::OS);
 
 /// The shading frame every classic surface starts from: `Nf = faceforward(normalize(N), I, N)`
 /// and `V = -normalize(I)`.

@@ -144,6 +144,22 @@ impl SurfaceShader for Surface {
         }
     }
 
+    #[inline]
+    fn globals_read(&self) -> anysl_core::GlobalSet {
+        match self {
+            Self::Brick(s) => s.globals_read(),
+            Self::Checker(s) => s.globals_read(),
+            Self::Glass(s) => s.globals_read(),
+            Self::Granite(s) => s.globals_read(),
+            Self::Parquet(s) => s.globals_read(),
+            Self::Plastic(s) => s.globals_read(),
+            Self::Screen(s) => s.globals_read(),
+            Self::Starball(s) => s.globals_read(),
+            Self::Venus(s) => s.globals_read(),
+            Self::Wood(s) => s.globals_read(),
+        }
+    }
+
     #[inline(always)]
     fn visit<V: SurfaceVisitor>(&self, v: V) -> V::Output {
         match self {

@@ -43,6 +43,34 @@ fn every_shader_runs_under_every_instantiation() {
     }
 }
 
+/// `globals_read` is right for every shader: with every other global NaN, f32, F32x8 and
+/// Dual<f32> give the same bits as with all globals set (renderers fill only these).
+#[test]
+fn globals_outside_globals_read_are_not_read() {
+    fn bits<F: ShadingFloat>(s: &Surface, lights: &[Light], set: &PointSet, poison: bool) -> Vec<u64> {
+        let mut out = Vec::new();
+        for i in (0..set.len()).step_by(F::LANES) {
+            let mut g = set.globals::<F>(i);
+            if poison {
+                g.poison_except(s.globals_read());
+            }
+            let (ci, oi) = shade(s, lights, g);
+            for c in [ci.r, ci.g, ci.b, oi.r, oi.g, oi.b] {
+                out.extend((0..F::LANES).map(|l| c.lane(l).to_bits()));
+            }
+        }
+        out
+    }
+    let lights = table1_lights();
+    let set = PointSet::random(256, 9);
+    for (name, s) in surfaces() {
+        assert!(bits::<f32>(&s, &lights, &set, false) == bits::<f32>(&s, &lights, &set, true), "{name} f32");
+        assert!(bits::<F32x8>(&s, &lights, &set, false) == bits::<F32x8>(&s, &lights, &set, true), "{name} f32x8");
+        let (a, b) = (bits::<Dual<f32>>(&s, &lights, &set, false), bits::<Dual<f32>>(&s, &lights, &set, true));
+        assert!(a == b, "{name} dual-f32");
+    }
+}
+
 /// Compares two outputs point by point: |a - b| ≤ tol · max(1, |b|). Returns the number of
 /// values out of tolerance and the worst relative error.
 fn compare(a: &anysl_core::points::ShadeOut<f64>, b: &anysl_core::points::ShadeOut<f64>, tol: f64) -> (usize, f64) {

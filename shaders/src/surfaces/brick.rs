@@ -1,7 +1,8 @@
 //! `brick` — running-bond brick on (s, t), after the RenderMan Companion / Peachey's brick.
 
-use crate::common::{view_frame, Finish};
+use crate::common::{view_frame, Finish, VIEW_GLOBALS};
 use anysl_core::prelude::*;
+use anysl_core::GlobalSet;
 
 anysl_core::shader_params! {
     /// Running-bond brickwork on (s, t) (Peachey's `brick`, *Texturing & Modeling* ch. 2,
@@ -61,6 +62,11 @@ impl Brick {
 }
 
 impl SurfaceShader for Brick {
+    #[inline(always)]
+    fn globals_read(&self) -> GlobalSet {
+        VIEW_GLOBALS | GlobalSet::S | GlobalSet::T
+    }
+
     #[inline(always)]
     fn shade<F: ShadingFloat, C: ShadingContext<F>>(&self, ctx: &mut C, e: &mut Exec<F>) -> SurfaceOutput<F> {
         let g = *ctx.globals();

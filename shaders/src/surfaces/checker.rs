@@ -1,7 +1,8 @@
 //! `checker` — an antialiased checkerboard in (s, t) with plastic lighting.
 
-use crate::common::{filtered_square, view_frame, Finish};
+use crate::common::{filtered_square, view_frame, Finish, VIEW_GLOBALS};
 use anysl_core::prelude::*;
+use anysl_core::GlobalSet;
 
 anysl_core::shader_params! {
     /// The classic RenderMan checkerboard on (s, t): `whitecolor` where `mod(s·frequency, 1)`
@@ -50,6 +51,11 @@ impl Checker {
 }
 
 impl SurfaceShader for Checker {
+    #[inline(always)]
+    fn globals_read(&self) -> GlobalSet {
+        VIEW_GLOBALS | GlobalSet::S | GlobalSet::T
+    }
+
     #[inline(always)]
     fn shade<F: ShadingFloat, C: ShadingContext<F>>(&self, ctx: &mut C, e: &mut Exec<F>) -> SurfaceOutput<F> {
         let g = *ctx.globals();

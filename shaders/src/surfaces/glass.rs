@@ -1,7 +1,8 @@
 //! `glass` — a dielectric: Fresnel-weighted reflection and refraction rays plus a highlight.
 
-use crate::common::{view_frame, Finish};
+use crate::common::{view_frame, Finish, VIEW_GLOBALS};
 use anysl_core::prelude::*;
+use anysl_core::GlobalSet;
 
 anysl_core::shader_params! {
     /// Classic ray-traced glass (after BMRT's `glass`): with `fresnel(I, Nf, η)` giving
@@ -32,6 +33,11 @@ anysl_core::shader_params! {
 }
 
 impl SurfaceShader for Glass {
+    #[inline(always)]
+    fn globals_read(&self) -> GlobalSet {
+        VIEW_GLOBALS | GlobalSet::CS
+    }
+
     #[inline(always)]
     fn shade<F: ShadingFloat, C: ShadingContext<F>>(&self, ctx: &mut C, e: &mut Exec<F>) -> SurfaceOutput<F> {
         let g = *ctx.globals();

@@ -1,7 +1,8 @@
 //! `granite` — turbulence (a fractal sum of |noise|) between a dark and a light stone colour.
 
-use crate::common::{view_frame, Finish};
+use crate::common::{view_frame, Finish, VIEW_GLOBALS};
 use anysl_core::prelude::*;
+use anysl_core::GlobalSet;
 
 anysl_core::shader_params! {
     /// Classic granite (RenderMan Companion / BMRT `granite`): turbulence
@@ -56,6 +57,11 @@ impl Granite {
 }
 
 impl SurfaceShader for Granite {
+    #[inline(always)]
+    fn globals_read(&self) -> GlobalSet {
+        VIEW_GLOBALS | GlobalSet::CS
+    }
+
     #[inline(always)]
     fn shade<F: ShadingFloat, C: ShadingContext<F>>(&self, ctx: &mut C, e: &mut Exec<F>) -> SurfaceOutput<F> {
         let g = *ctx.globals();

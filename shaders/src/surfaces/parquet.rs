@@ -1,7 +1,8 @@
 //! `parquet` — wooden planks in a basket-weave parquet on (s, t), each with its own grain.
 
-use crate::common::{view_frame, Finish};
+use crate::common::{view_frame, Finish, VIEW_GLOBALS};
 use anysl_core::prelude::*;
+use anysl_core::GlobalSet;
 
 anysl_core::shader_params! {
     /// Basket-weave parquet on (s, t): square tiles of `tilesize`, each holding `planks`
@@ -100,6 +101,11 @@ impl Parquet {
 }
 
 impl SurfaceShader for Parquet {
+    #[inline(always)]
+    fn globals_read(&self) -> GlobalSet {
+        VIEW_GLOBALS | GlobalSet::S | GlobalSet::T
+    }
+
     #[inline(always)]
     fn shade<F: ShadingFloat, C: ShadingContext<F>>(&self, ctx: &mut C, e: &mut Exec<F>) -> SurfaceOutput<F> {
         let g = *ctx.globals();

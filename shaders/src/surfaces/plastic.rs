@@ -1,7 +1,8 @@
 //! `plastic` — the paper's "Phong": Lambertian diffuse plus a Blinn highlight.
 
-use crate::common::{view_frame, Finish};
+use crate::common::{view_frame, Finish, VIEW_GLOBALS};
 use anysl_core::prelude::*;
+use anysl_core::GlobalSet;
 
 anysl_core::shader_params! {
     /// RSL `plastic` (RenderMan Interface 3.2 standard shader): `Oi = Os`,
@@ -29,6 +30,11 @@ impl Plastic {
 }
 
 impl SurfaceShader for Plastic {
+    #[inline(always)]
+    fn globals_read(&self) -> GlobalSet {
+        VIEW_GLOBALS | GlobalSet::CS
+    }
+
     #[inline(always)]
     fn shade<F: ShadingFloat, C: ShadingContext<F>>(&self, ctx: &mut C, e: &mut Exec<F>) -> SurfaceOutput<F> {
         let g = *ctx.globals();

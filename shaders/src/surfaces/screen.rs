@@ -1,7 +1,8 @@
 //! `screen` — a wire mesh: metal wires with plastic lighting, holes that let the ray through.
 
-use crate::common::{view_frame, Finish};
+use crate::common::{view_frame, Finish, VIEW_GLOBALS};
 use anysl_core::prelude::*;
+use anysl_core::GlobalSet;
 
 anysl_core::shader_params! {
     /// The classic RenderMan wire screen: lanes where `mod(s·frequency, 1) < density` or
@@ -37,6 +38,11 @@ impl Screen {
 }
 
 impl SurfaceShader for Screen {
+    #[inline(always)]
+    fn globals_read(&self) -> GlobalSet {
+        VIEW_GLOBALS | GlobalSet::CS | GlobalSet::S | GlobalSet::T
+    }
+
     #[inline(always)]
     fn shade<F: ShadingFloat, C: ShadingContext<F>>(&self, ctx: &mut C, e: &mut Exec<F>) -> SurfaceOutput<F> {
         let g = *ctx.globals();

@@ -1,7 +1,8 @@
 //! `starball` — a ball with a five-pointed star on each side and a band around its middle.
 
-use crate::common::{view_frame, Finish};
+use crate::common::{view_frame, Finish, VIEW_GLOBALS};
 use anysl_core::prelude::*;
+use anysl_core::GlobalSet;
 
 anysl_core::shader_params! {
     /// The classic starball (the Luxo Jr. ball): in object-space spherical coordinates of
@@ -61,6 +62,11 @@ impl Starball {
 }
 
 impl SurfaceShader for Starball {
+    #[inline(always)]
+    fn globals_read(&self) -> GlobalSet {
+        VIEW_GLOBALS
+    }
+
     #[inline(always)]
     fn shade<F: ShadingFloat, C: ShadingContext<F>>(&self, ctx: &mut C, e: &mut Exec<F>) -> SurfaceOutput<F> {
         let g = *ctx.globals();

@@ -1,7 +1,8 @@
 //! `venus` — a cloudy planetary atmosphere: fBm with a Coriolis twist, coloured by a spline.
 
-use crate::common::view_frame;
+use crate::common::{view_frame, VIEW_GLOBALS};
 use anysl_core::prelude::*;
+use anysl_core::GlobalSet;
 
 /// The cloud palette, from deep haze to bright cloud tops (Catmull-Rom knots; the first and
 /// last are repeated so the curve ends on them).
@@ -74,6 +75,11 @@ impl Venus {
 }
 
 impl SurfaceShader for Venus {
+    #[inline(always)]
+    fn globals_read(&self) -> GlobalSet {
+        VIEW_GLOBALS
+    }
+
     #[inline(always)]
     fn shade<F: ShadingFloat, C: ShadingContext<F>>(&self, ctx: &mut C, e: &mut Exec<F>) -> SurfaceOutput<F> {
         let g = *ctx.globals();

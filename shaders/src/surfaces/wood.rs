@@ -1,7 +1,8 @@
 //! `wood` — growth rings around the z axis, perturbed by noise, with fine grain.
 
-use crate::common::{view_frame, Finish};
+use crate::common::{view_frame, Finish, VIEW_GLOBALS};
 use anysl_core::prelude::*;
+use anysl_core::GlobalSet;
 
 anysl_core::shader_params! {
     /// Classic solid wood (after the RenderMan Companion / BMRT `wood`), as in the shading
@@ -51,6 +52,11 @@ impl Wood {
 }
 
 impl SurfaceShader for Wood {
+    #[inline(always)]
+    fn globals_read(&self) -> GlobalSet {
+        VIEW_GLOBALS
+    }
+
     #[inline(always)]
     fn shade<F: ShadingFloat, C: ShadingContext<F>>(&self, ctx: &mut C, e: &mut Exec<F>) -> SurfaceOutput<F> {
         let g = *ctx.globals();

@@ -1,0 +1,70 @@
+//! Shading-time probe of the Table-1 workload (ignored by default; `anysl bench table1` is the
+//! benchmark): `cargo test --release -p anysl-renderers --test table1_probe -- --ignored --nocapture`.
+//! `SHADERS=phong,checker` picks shaders, `SIZE=256` the image, `RUNS=3` the runs (median);
+//! `SPIN=phong:f32x8` renders one variant for 5 s for `perf record`.
+
+use anysl_renderers::{render_packet_stats, scenes, PacketStats, RenderOptions, Scene};
+use anysl_shaders::{table1_lights, Light, Surface};
+use anysl_simd::{F32x16, F32x4, F32x8};
+use std::time::{Duration, Instant};
+
+fn env(name: &str, default: &str) -> String {
+    std::env::var(name).unwrap_or_else(|_| default.to_string())
+}
+
+fn render(scene: &Scene<Surface, Light>, opts: &RenderOptions, variant: &str) -> PacketStats {
+    match variant {
+        "f32" => render_packet_stats::<f32, _, _>(scene, opts, 8).1,
+        "f32x4" => render_packet_stats::<F32x4, _, _>(scene, opts, 4).1,
+        "f32x8" => render_packet_stats::<F32x8, _, _>(scene, opts, 8).1,
+        _ => render_packet_stats::<F32x16, _, _>(scene, opts, 16).1,
+    }
+}
+
+#[test]
+#[ignore]
+fn table1_shading() {
+    let size: u32 = env("SIZE", "256").parse().unwrap();
+    let runs: usize = env("RUNS", "3").parse().unwrap();
+    let opts = RenderOptions { threads: 1, shadows: false, derivatives: false, ..RenderOptions::default() };
+    if let Ok(spin) = std::env::var("SPIN") {
+        let (name, variant) = spin.split_once(':').unwrap();
+        let scene = scenes::table1(Surface::by_name(name).unwrap(), table1_lights(), size);
+        let t = Instant::now();
+        while t.elapsed() < Duration::from_secs(5) {
+            let _ = render(&scene, &opts, variant);
+        }
+        return;
+    }
+    let names = env("SHADERS", &Surface::NAMES.join(","));
+    let mut sums = [0.0f64; 4];
+    let mut n = 0;
+    for name in names.split(',') {
+        let scene = scenes::table1(Surface::by_name(name).unwrap(), table1_lights(), size);
+        let mut times = [Vec::new(), Vec::new(), Vec::new(), Vec::new()];
+        for _ in 0..runs {
+            for (k, v) in ["f32", "f32x4", "f32x8", "f32x16"].into_iter().enumerate() {
+                times[k].push(render(&scene, &opts, v).shading);
+            }
+        }
+        let med: Vec<f64> = times
+            .iter_mut()
+            .map(|t| {
+                t.sort();
+                t[t.len() / 2].as_secs_f64() * 1e3
+            })
+            .collect();
+        let spd: Vec<f64> = med.iter().map(|m| med[0] / m).collect();
+        for (s, x) in sums.iter_mut().zip(&spd) {
+            *s += x;
+        }
+        n += 1;
+        eprintln!("{name:9} f32 {:7.2} ms  x4 {:5.2}x  x8 {:5.2}x  x16 {:5.2}x", med[0], spd[1], spd[2], spd[3]);
+    }
+    eprintln!(
+        "mean      x4 {:5.2}x  x8 {:5.2}x  x16 {:5.2}x",
+        sums[1] / n as f64,
+        sums[2] / n as f64,
+        sums[3] / n as f64
+    );
+}
