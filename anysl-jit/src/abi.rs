@@ -30,11 +30,19 @@ pub type IllumFn = unsafe extern "C" fn(
     env: *mut u8,
 );
 
-/// A compiled shader: `(globals, outputs, mask, ctx, host table)`. `globals` points at the
+/// A compiled shader: `(globals, outputs, mask, ctx, host table, parameter block)`; the
+/// parameter block ([`crate::codegen::param_block`]) is read only by code compiled without
+/// specialization. `globals` points at the
 /// renderer's `Globals<F>` (read at the offsets of [`GlobalsLayout`]); see [`OUTPUT_ORDER`]
 /// for the output buffer.
-pub type ShadeFn =
-    unsafe extern "C" fn(globals: *const f32, out: *mut f32, mask: *const u32, ctx: *mut c_void, host: *const usize);
+pub type ShadeFn = unsafe extern "C" fn(
+    globals: *const f32,
+    out: *mut f32,
+    mask: *const u32,
+    ctx: *mut c_void,
+    host: *const usize,
+    params: *const f32,
+);
 
 /// The globals and the number of their first component (see [`GlobalsLayout`]).
 pub const GLOBAL_ORDER: [(anysl_rsl::ir::Global, usize); 15] = {

@@ -63,6 +63,9 @@ pub struct Target {
     pub threaded: bool,
     /// Emit `noise`/`snoise`/`cellnoise` as inline IR (else a call into the Rust library).
     pub inline_noise: bool,
+    /// Read numeric parameters from the run-time parameter block (the shade function's
+    /// `params` argument, laid out by [`param_block`]) instead of compiling their values in.
+    pub runtime_params: bool,
 }
 
 /// One float: its value and, for dual numbers, its derivatives.
@@ -892,7 +895,7 @@ impl<'c, 'm> Cg<'c, 'm> {
         let fty = self
             .cx
             .void_type()
-            .fn_type(&[f32p.into(), f32p.into(), i32p.into(), self.i8p().into(), i64p.into()], false);
+            .fn_type(&[f32p.into(), f32p.into(), i32p.into(), self.i8p().into(), i64p.into(), f32p.into()], false);
         let f = self.m.add_function(SHADE_NAME, fty, None);
         self.set_fn_attrs(f);
         let entry = self.cx.append_basic_block(f, "entry");
@@ -900,6 +903,8 @@ impl<'c, 'm> Cg<'c, 'm> {
         let g = f.get_nth_param(0).expect("g");
         let out = f.get_nth_param(1).expect("out").into_pointer_value();
         let maskp = f.get_nth_param(2).expect("mask").into_pointer_value();
+        let params = f.get_nth_param(5).expect("params").into_pointer_value();
+        let param_offsets = param_block(module, param_values).1;
         // Entry mask.
         let m0 = self.read_mask_lanes(maskp);
         let mask = self.new_mask(m0);
@@ -959,13 +964,18 @@ impl<'c, 'm> Cg<'c, 'm> {
                         None => Val::Num(vec![self.fc(0.0); Self::slot_comps(s.ty).max(1)]),
                     }
                 }
-                SlotKind::Param(k) => {
-                    let c = param_values
-                        .get(*k as usize)
-                        .cloned()
-                        .unwrap_or_else(|| module.params[*k as usize].default.clone());
-                    self.const_val(&c, s.ty)
-                }
+                SlotKind::Param(k) => match param_offsets.get(*k as usize).copied().flatten() {
+                    Some(at) if self.t.runtime_params => {
+                        self.param_from_block(params, at, Self::slot_comps(s.ty).max(1))
+                    }
+                    _ => {
+                        let c = param_values
+                            .get(*k as usize)
+                            .cloned()
+                            .unwrap_or_else(|| module.params[*k as usize].default.clone());
+                        self.const_val(&c, s.ty)
+                    }
+                },
                 SlotKind::Local => {
                     if s.ty.base == BaseType::String {
                         Val::Str(vec![String::new(); s.ty.array.unwrap_or(1) as usize])
@@ -1090,20 +1100,26 @@ impl<'c, 'm> Cg<'c, 'm> {
     }
 
     fn const_val(&self, c: &Const, ty: Type) -> Val<'c> {
-        let mut nums = Vec::new();
-        let mut strs = Vec::new();
-        flatten(c, &mut nums, &mut strs);
         if ty.base == BaseType::String {
+            let (mut nums, mut strs) = (Vec::new(), Vec::new());
+            flatten(c, &mut nums, &mut strs);
             return Val::Str(strs);
         }
-        let w = Self::slot_comps(ty).max(1);
-        if nums.len() == 1 && w > 1 && ty.base == BaseType::Matrix {
-            let x = nums[0];
-            nums = (0..16).map(|i| if i % 5 == 0 { x } else { 0.0 }).collect();
-        } else if nums.len() == 1 && w > 1 {
-            nums = vec![nums[0]; w];
-        }
-        Val::Num(nums.into_iter().map(|x| self.fc(x)).collect())
+        Val::Num(slot_values(c, ty).into_iter().map(|x| self.fc(x)).collect())
+    }
+
+    /// Parameter `k`'s value read from the run-time parameter block at `params` (uniform).
+    fn param_from_block(&self, params: PointerValue<'c>, offset: usize, comps: usize) -> Val<'c> {
+        Val::Num(
+            (offset..offset + comps)
+                .map(|at| {
+                    let p = unsafe { self.b.build_gep(params, &[self.cx.i64_type().const_int(at as u64, false)], "") }
+                        .expect("gep");
+                    let v = self.b.build_load(p, "param").expect("load");
+                    S { r: Repr::U, v, d: None }
+                })
+                .collect(),
+        )
     }
 
     // ---------------------------------------------------------------- control flow
@@ -2005,6 +2021,44 @@ unsafe fn transplant<'c>(bb: inkwell::basic_block::BasicBlock<'c>, f: FunctionVa
     let bbr = bb.as_mut_ptr();
     LLVMRemoveBasicBlockFromParent(bbr);
     LLVMAppendExistingBasicBlock(f.as_value_ref(), bbr);
+}
+
+/// The numbers a slot of type `ty` holds for the constant `c`: one per component, a float
+/// widened to every component of a triple or to the diagonal of a matrix.
+fn slot_values(c: &Const, ty: Type) -> Vec<f64> {
+    let (mut nums, mut strs) = (Vec::new(), Vec::new());
+    flatten(c, &mut nums, &mut strs);
+    let w = Cg::slot_comps(ty).max(1);
+    if nums.len() == 1 && w > 1 && ty.base == BaseType::Matrix {
+        let x = nums[0];
+        nums = (0..16).map(|i| if i % 5 == 0 { x } else { 0.0 }).collect();
+    } else if nums.len() == 1 && w > 1 {
+        nums = vec![nums[0]; w];
+    }
+    nums
+}
+
+/// The run-time parameter block of `module` with parameter `values` (defaults where missing):
+/// every numeric parameter's components in declaration order, as `f32` (strings are always
+/// compiled in), and where each parameter starts (`None` for strings).
+#[must_use]
+pub fn param_block(module: &ir::Module, values: &[Const]) -> (Vec<f32>, Vec<Option<usize>>) {
+    let mut block = Vec::new();
+    let offsets = module
+        .params
+        .iter()
+        .enumerate()
+        .map(|(k, p)| {
+            if p.ty.base == BaseType::String {
+                return None;
+            }
+            let at = block.len();
+            let c = values.get(k).unwrap_or(&p.default);
+            block.extend(slot_values(c, module.func.slots[p.slot.0 as usize].ty).into_iter().map(|x| x as f32));
+            Some(at)
+        })
+        .collect();
+    (block, offsets)
 }
 
 fn flatten(c: &Const, out: &mut Vec<f64>, strs: &mut Vec<String>) {

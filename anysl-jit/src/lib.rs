@@ -145,7 +145,9 @@ pub struct JitOptions {
     pub threaded: bool,
     /// Generate code for the host CPU (`target-cpu`/`target-features`); else generic x86-64.
     pub host_cpu: bool,
-    /// Specialize uniform parameters to the instance's values (recompiles on `set_param`).
+    /// Specialize uniform parameters to the instance's values (recompiles on `set_param`);
+    /// off, numeric parameters are read from a run-time parameter block, so one compiled
+    /// variant serves every instance and `set_param` costs no compilation.
     pub specialize: bool,
     /// Emit the noise family as inline LLVM IR (vectorized hash, derivatives dropped where
     /// unused) instead of calling the Rust library: faster shading, longer compiles.
@@ -323,6 +325,7 @@ pub fn compile_with(
         dual: variant.dual(),
         threaded: opts.threaded,
         inline_noise: opts.inline_noise,
+        runtime_params: !opts.specialize,
     };
     let mut cg = Cg::new(cref, &m.func, target, variant.rt_table(), Variant::F32.rt_table());
     let (cpu, features) = if opts.host_cpu {

@@ -46,6 +46,9 @@ pub struct JitShader {
     pub opts: JitOptions,
     variants: [Slot; 6],
     interp: InterpShader,
+    /// `values` as the run-time parameter block that code compiled without specialization
+    /// reads ([`crate::codegen::param_block`]).
+    param_block: Vec<f32>,
 }
 
 impl Clone for JitShader {
@@ -56,6 +59,7 @@ impl Clone for JitShader {
             opts: self.opts.clone(),
             variants: Default::default(),
             interp: self.interp.clone(),
+            param_block: self.param_block.clone(),
         }
     }
 }
@@ -76,7 +80,9 @@ impl JitShader {
         let mut interp_module = module.clone();
         anysl_rsl::passes::optimize(&mut interp_module, &anysl_rsl::passes::PassOptions::default());
         let program = Program::new(interp_module).map_err(|e| JitError(e.to_string()))?;
+        let param_block = crate::codegen::param_block(&module, &values).0;
         Ok(Self {
+            param_block,
             module: Arc::new(module),
             values,
             opts,
@@ -146,7 +152,14 @@ impl JitShader {
         // SAFETY: the buffers have the layout the compiled code expects; `ctx` is a `C`, which
         // is what the host table's shims take.
         unsafe {
-            (cs.f)(gbuf, out.as_mut_ptr().cast(), mbuf.as_ptr(), (&mut hc as *mut HostCtx<F, C>).cast(), host);
+            (cs.f)(
+                gbuf,
+                out.as_mut_ptr().cast(),
+                mbuf.as_ptr(),
+                (&mut hc as *mut HostCtx<F, C>).cast(),
+                host,
+                self.param_block.as_ptr(),
+            );
         }
         // SAFETY: the compiled code wrote all six components (F and G are the same type).
         cast::<SurfaceOutput<G>, SurfaceOutput<F>>(unsafe { out.assume_init() })
@@ -163,8 +176,11 @@ impl Shader for JitShader {
     fn set_param(&mut self, name: &str, value: &ParamValue) -> Result<(), ParamError> {
         self.interp.set_param(name, value)?;
         self.values = self.interp.values.clone();
-        // Parameters are compiled in: recompile on next use.
-        self.variants = Default::default();
+        self.param_block = crate::codegen::param_block(&self.module, &self.values).0;
+        if self.opts.specialize {
+            // Parameters are compiled in: recompile on next use.
+            self.variants = Default::default();
+        }
         Ok(())
     }
 }

@@ -19,7 +19,8 @@ fn probe() {
     let lights = if std::env::var("LIGHTS").is_ok_and(|v| v == "none") { Vec::new() } else { table1_lights() };
     // `NOISE=call` measures the library-call noise instead of the inline IR.
     let inline_noise = std::env::var("NOISE").map_or(true, |v| v != "call");
-    let opts = JitOptions { inline_noise, ..JitOptions::default() };
+    let specialize = std::env::var("SPEC").map_or(true, |v| v != "0");
+    let opts = JitOptions { inline_noise, specialize, ..JitOptions::default() };
     for name in ["plastic", "checker", "brick", "wood", "granite", "parquet", "screen", "starball", "venus", "glass"] {
         let path = rsl_dir().join(format!("{name}.sl"));
         let jit = JitShader::from_file(&path, &[rsl_dir().join("include")], opts.clone()).unwrap();
