@@ -74,6 +74,10 @@ macro_rules! rsl_closed_sets {
             fn shade<F: ShadingFloat, C: ShadingContext<F>>(&self, ctx: &mut C, e: &mut Exec<F>) -> SurfaceOutput<F> {
                 match self { $( Self::$S(s) => shade_out_of_line(s, ctx, e), )* }
             }
+            #[inline]
+            fn globals_read(&self) -> anysl_core::GlobalSet {
+                match self { $( Self::$S(s) => s.globals_read(), )* }
+            }
             #[inline(always)]
             fn visit<V: SurfaceVisitor>(&self, v: V) -> V::Output {
                 match self { $( Self::$S(s) => v.visit(s), )* }

@@ -47,14 +47,16 @@ fn every_shader_runs_under_every_instantiation() {
 /// Dual<f32> give the same bits as with all globals set (renderers fill only these).
 #[test]
 fn globals_outside_globals_read_are_not_read() {
-    fn bits<F: ShadingFloat>(s: &Surface, lights: &[Light], set: &PointSet, poison: bool) -> Vec<u64> {
+    fn bits<F: ShadingFloat, S: SurfaceShader>(s: &S, lights: &[Light], set: &PointSet, poison: bool) -> Vec<u64> {
         let mut out = Vec::new();
         for i in (0..set.len()).step_by(F::LANES) {
             let mut g = set.globals::<F>(i);
             if poison {
                 g.poison_except(s.globals_read());
             }
-            let (ci, oi) = shade(s, lights, g);
+            let mut ctx = PointContext::new(g, lights);
+            let o = s.shade(&mut ctx, &mut Exec::<F>::new());
+            let (ci, oi) = (o.Ci, o.Oi);
             for c in [ci.r, ci.g, ci.b, oi.r, oi.g, oi.b] {
                 out.extend((0..F::LANES).map(|l| c.lane(l).to_bits()));
             }
@@ -63,11 +65,22 @@ fn globals_outside_globals_read_are_not_read() {
     }
     let lights = table1_lights();
     let set = PointSet::random(256, 9);
-    for (name, s) in surfaces() {
-        assert!(bits::<f32>(&s, &lights, &set, false) == bits::<f32>(&s, &lights, &set, true), "{name} f32");
-        assert!(bits::<F32x8>(&s, &lights, &set, false) == bits::<F32x8>(&s, &lights, &set, true), "{name} f32x8");
-        let (a, b) = (bits::<Dual<f32>>(&s, &lights, &set, false), bits::<Dual<f32>>(&s, &lights, &set, true));
+    fn check<S: SurfaceShader>(name: &str, s: &S, lights: &[Light], set: &PointSet) {
+        assert!(bits::<f32, S>(s, lights, set, false) == bits::<f32, S>(s, lights, set, true), "{name} f32");
+        assert!(bits::<F32x8, S>(s, lights, set, false) == bits::<F32x8, S>(s, lights, set, true), "{name} f32x8");
+        let (a, b) = (bits::<Dual<f32>, S>(s, lights, set, false), bits::<Dual<f32>, S>(s, lights, set, true));
         assert!(a == b, "{name} dual-f32");
+    }
+    for (name, s) in surfaces() {
+        check(name, &s, &lights, &set);
+    }
+    // The `.sl` shaders compiled to Rust publish what the IR analysis found.
+    for name in anysl_shaders::rsl::RslSurface::NAMES {
+        let s = anysl_shaders::rsl::RslSurface::by_name(name).expect("generated shader");
+        if *name == "plastic" {
+            assert!(s.globals_read() != anysl_core::GlobalSet::ALL, "plastic: no globals_read");
+        }
+        check(name, &s, &lights, &set);
     }
 }
 

@@ -1310,6 +1310,11 @@ impl<'a> Gen<'a> {
             ShaderKind::Surface => {
                 self.line(&format!("impl {k}::SurfaceShader for {ty} {{"));
                 self.ind += 1;
+                let read = crate::passes::analysis::globals_read(self.m);
+                self.line("#[inline(always)]");
+                self.line(&format!("fn globals_read(&self) -> {k}::GlobalSet {{"));
+                self.line(&format!("    {k}::GlobalSet({:#06x})", read.0));
+                self.line("}");
                 self.line("#[inline(always)]");
                 self.line(&format!(
                     "fn shade<F: {k}::ShadingFloat, C: {k}::ShadingContext<F>>(&self, ctx: &mut C, e: &mut {k}::Exec<F>) -> {k}::SurfaceOutput<F> {{"
