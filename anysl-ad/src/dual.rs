@@ -2,7 +2,7 @@
 //! operation by the chain rule (forward-mode automatic differentiation).
 
 use crate::name::{as_str, prefixed, NAME_CAP};
-use anysl_core::{Blend, ShadingFloat};
+use anysl_core::{Blend, PureFn, ShadingFloat};
 use core::f64::consts::{LN_2, LOG2_E};
 use core::ops::{Add, AddAssign, Div, DivAssign, Mul, MulAssign, Neg, Sub, SubAssign};
 
@@ -325,6 +325,16 @@ impl<F: ShadingFloat> ShadingFloat for Dual<F> {
     #[inline(always)]
     fn bits_to_float_signed(h: F::Bits) -> Self {
         Self::constant(F::bits_to_float_signed(h))
+    }
+
+    /// The value is `f` at `F` (the out-of-line function the `F` instantiation calls, so
+    /// values match it bit for bit); the derivatives come from `f` at `Dual<F>` in a call of
+    /// its own, which is dead, and deleted, wherever the derivatives are.
+    #[inline(always)]
+    fn apply<P: PureFn<N>, const N: usize>(f: &P, args: [Self; N]) -> Self {
+        let val = f.eval::<F>(args.map(|a| a.val));
+        let d = f.eval::<Self>(args);
+        Self { val, ddx: d.ddx, ddy: d.ddy }
     }
 
     #[inline(always)]

@@ -221,6 +221,7 @@ impl<F: ShadingFloat> Globals<F> {
 }
 
 impl<F: ShadingFloat> Blend<F> for Globals<F> {
+    #[inline(always)]
     fn blend(m: F::Mask, a: Self, b: Self) -> Self {
         Self {
             P: Blend::blend(m, a.P, b.P),
@@ -253,9 +254,11 @@ pub struct SurfaceOutput<F> {
 }
 
 impl<F: ShadingFloat> Blend<F> for SurfaceOutput<F> {
+    #[inline(always)]
     fn blend(m: F::Mask, a: Self, b: Self) -> Self {
         Self { Ci: Blend::blend(m, a.Ci, b.Ci), Oi: Blend::blend(m, a.Oi, b.Oi) }
     }
+    #[inline(always)]
     fn widen(self) -> Self {
         Self { Ci: self.Ci.widen(), Oi: self.Oi.widen() }
     }
@@ -414,11 +417,21 @@ pub fn run_illuminance<F, L, V, B>(
             Some(v) => out.cl * v,
             None => out.cl,
         };
-        e.masked(
-            mask,
-            #[inline(always)]
-            |e| body(e, to_light, cl),
-        );
+        if mask.all() {
+            // Every lane is live (the common case): the body runs under a mask the compiler
+            // sees to be full, so its masked writes are plain writes (no blends), as in a
+            // hand-written kernel. It is inlined twice, once per case.
+            e.masked_full(
+                #[inline(always)]
+                |e| body(e, to_light, cl),
+            );
+        } else {
+            e.masked(
+                mask,
+                #[inline(always)]
+                |e| body(e, to_light, cl),
+            );
+        }
     }
 }
 

@@ -282,4 +282,15 @@ impl<F: ShadingFloat> Exec<F> {
         *self = saved;
         self.widening = widening;
     }
+
+    /// [`Exec::masked`] for a region the caller knows every lane of, i.e. `self.mask() & mask`
+    /// is full: `body` runs under a fresh, full mask — a constant the compiler folds, so masked
+    /// writes in `body` compile to plain writes — and the mask is restored afterwards.
+    #[inline(always)]
+    pub fn masked_full(&mut self, body: impl FnOnce(&mut Self)) {
+        let mut full = Self::new();
+        full.widening = self.widening;
+        body(&mut full);
+        self.widening = full.widening;
+    }
 }

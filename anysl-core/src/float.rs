@@ -152,6 +152,13 @@ pub trait Blend<F: ShadingFloat>: Copy {
     }
 }
 
+/// A pure function of `N` numbers written once for every instantiation: what
+/// [`ShadingFloat::apply`] evaluates. `eval` must not depend on anything but `self` and `args`.
+pub trait PureFn<const N: usize> {
+    /// `f(args)` at instantiation `G`.
+    fn eval<G: ShadingFloat>(&self, args: [G; N]) -> G;
+}
+
 /// The number type a shader is written against. See the module docs.
 ///
 /// Constants enter through [`ShadingFloat::c`] (converted to the type's precision once,
@@ -291,6 +298,17 @@ pub trait ShadingFloat:
     fn bits_to_unit(h: Self::Bits) -> Self;
     /// Converts integer lanes to floats (`(i32) h` as a float).
     fn bits_to_float_signed(h: Self::Bits) -> Self;
+
+    /// `f(args)`, for library functions too large to inline into every shader (noise).
+    /// Every type but dual numbers evaluates `f` directly. Dual numbers take the value from
+    /// `f` at their inner type (exactly what that type computes) and the derivatives from a
+    /// second, separate evaluation: both calls are pure, so where a shader never reads the
+    /// derivatives (its output derivatives are dropped) the compiler deletes the second call
+    /// whole, although `f` itself is compiled out of line.
+    #[inline(always)]
+    fn apply<P: PureFn<N>, const N: usize>(f: &P, args: [Self; N]) -> Self {
+        f.eval(args)
+    }
 
     /// Screen-space derivative ∂/∂x (zero unless [`Self::HAS_DERIVS`]).
     #[inline(always)]

@@ -34,7 +34,7 @@ pub use context::{
     PointContext, ShadingContext, SurfaceOutput,
 };
 pub use exec::{Exec, INTERVAL_LOOP_LIMIT};
-pub use float::{Blend, LatticeBits, Mask, ShadingFloat};
+pub use float::{Blend, LatticeBits, Mask, PureFn, ShadingFloat};
 pub use shader::{
     DisplacementShader, LightShader, ParamError, ParamField, ParamInfo, ParamType, ParamValue, Shader, ShaderKind,
     ShaderMeta, Storage, SurfaceShader, SurfaceVisitor,

@@ -2,7 +2,7 @@
 
 pub use crate::context::{illuminate, solar, Emission, Globals, LightOutput, ShadingContext, SurfaceOutput};
 pub use crate::exec::Exec;
-pub use crate::float::{Blend, LatticeBits, Mask, ShadingFloat};
+pub use crate::float::{Blend, LatticeBits, Mask, PureFn, ShadingFloat};
 pub use crate::shader::{DisplacementShader, LightShader, Shader, SurfaceShader};
 pub use crate::stdlib::*;
 pub use crate::vec::{Color, Matrix4, Vec3};

@@ -290,12 +290,22 @@ impl<F: ShadingFloat> Vec3<F> {
     #[inline(always)]
     #[must_use]
     pub fn normalize(self) -> Self {
+        self.normalize_signed(F::Mask::splat(false))
+    }
+    /// `normalize(self)`, negated in the lanes of `flip`, with the sign folded into the
+    /// scale factor (one select per vector instead of one negation and select per component;
+    /// the same vector bit for bit, since negation is exact). `faceforward(normalize(N), I)`
+    /// and `-normalize(I)` are this.
+    #[inline(always)]
+    #[must_use]
+    pub fn normalize_signed(self, flip: F::Mask) -> Self {
         let l2 = self.dot(self);
         let zero = F::c(0.0);
         // The guard is computed beside the square root, off its latency chain: 1/√0 = inf is
         // replaced by 0 (as is a NaN length).
         let inv = F::c(1.0) / l2.sqrt();
-        let unit = self * F::select(l2.gt(zero), inv, zero);
+        let k = F::select(l2.gt(zero), inv, zero);
+        let unit = self * F::select(flip, -k, k);
         // Squared lengths with a full-precision normal representation and room to spare.
         let (lo, hi) = if F::UNIT_ROUNDOFF > 1e-12 {
             (2f64.powi(-120), 2f64.powi(120))
@@ -304,7 +314,8 @@ impl<F: ShadingFloat> Vec3<F> {
         };
         let rescale = l2.lt(F::c(lo)) | l2.gt(F::c(hi));
         if rescale.any() {
-            Self::select(rescale, self.normalize_rescaled(), unit)
+            let r = self.normalize_rescaled();
+            Self::select(rescale, Self::select(flip, -r, r), unit)
         } else {
             unit
         }

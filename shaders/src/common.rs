@@ -12,7 +12,7 @@ pub(crate) const VIEW_GLOBALS: GlobalSet = GlobalSet::P.union(GlobalSet::N).unio
 /// and `V = -normalize(I)`.
 #[inline(always)]
 pub(crate) fn view_frame<F: ShadingFloat>(g: &Globals<F>) -> (Vec3<F>, Vec3<F>) {
-    (faceforward(g.N.normalize(), g.I, g.N), -g.I.normalize())
+    (faceforward_normalize(g.N, g.I), g.I.normalize_signed(F::Mask::splat(true)))
 }
 
 /// The coefficients of the plastic illumination model (uniform shader parameters).

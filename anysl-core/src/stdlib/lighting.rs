@@ -106,7 +106,10 @@ pub fn specular<F: ShadingFloat, C: ShadingContext<F>>(
         Some((n, F::c(PI / 2.0))),
         #[inline(always)]
         |e, l, cl| {
-            e.update(&mut c, |c| c + cl * specularbrdf(l, n, v, roughness));
+            // The lobe outside the update closure: that closure is not always inlined, and
+            // out of line it would compute every derivative of a dual number.
+            let w = specularbrdf(l, n, v, roughness);
+            e.update(&mut c, |c| c + cl * w);
         },
     );
     c

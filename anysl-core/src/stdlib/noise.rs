@@ -15,7 +15,7 @@
 //! Non-finite coordinates give the lattice-point value (noise 0.5, snoise 0), never NaN.
 
 use super::math::{clamp, fmod};
-use crate::float::{LatticeBits, Mask, ShadingFloat};
+use crate::float::{LatticeBits, Mask, PureFn, ShadingFloat};
 use crate::vec::{Color, Vec3};
 
 /// Hash multipliers per lattice axis (x, y, z, w) and for the seed.
@@ -121,6 +121,14 @@ fn cell<F: ShadingFloat>(x: F, period: Option<F>) -> (F, F::Bits, F::Bits) {
 #[inline]
 #[must_use]
 pub fn perlin3<F: ShadingFloat>(p: Vec3<F>, period: Option<Vec3<F>>, seed: u32) -> F {
+    perlin3_at(p, period, seed)
+}
+
+/// [`perlin3`], always inlined: [`SignedNoise`] must hold its whole computation (a callee
+/// compiled separately, perhaps in another codegen unit, would hide from the optimizer that
+/// the noise is pure — and with it that a dead derivative call may be deleted).
+#[inline(always)]
+fn perlin3_at<F: ShadingFloat>(p: Vec3<F>, period: Option<Vec3<F>>, seed: u32) -> F {
     let (fx, i0, i1) = cell(p.x, period.map(|q| q.x));
     let (fy, j0, j1) = cell(p.y, period.map(|q| q.y));
     let (fz, k0, k1) = cell(p.z, period.map(|q| q.z));
@@ -128,7 +136,7 @@ pub fn perlin3<F: ShadingFloat>(p: Vec3<F>, period: Option<Vec3<F>>, seed: u32) 
     let (gx0, gx1) = (fx, fx - one);
     let (gy0, gy1) = (fy, fy - one);
     let (gz0, gz1) = (fz, fz - one);
-    let c = |i, j, k, x, y, z| grad3::<F>(lattice_hash(&[i, j, k], seed), x, y, z);
+    let c = move |i, j, k, x, y, z| grad3::<F>(lattice_hash(&[i, j, k], seed), x, y, z);
     let u = fade(fx);
     let v = fade(fy);
     let w = fade(fz);
@@ -143,14 +151,21 @@ pub fn perlin3<F: ShadingFloat>(p: Vec3<F>, period: Option<Vec3<F>>, seed: u32) 
 #[inline]
 #[must_use]
 pub fn perlin4<F: ShadingFloat>(p: Vec3<F>, t: F, period: Option<(Vec3<F>, F)>, seed: u32) -> F {
+    perlin4_at(p, t, period, seed)
+}
+
+/// [`perlin4`], always inlined (see [`perlin3_at`]).
+#[inline(always)]
+fn perlin4_at<F: ShadingFloat>(p: Vec3<F>, t: F, period: Option<(Vec3<F>, F)>, seed: u32) -> F {
     let (fx, i0, i1) = cell(p.x, period.map(|q| q.0.x));
     let (fy, j0, j1) = cell(p.y, period.map(|q| q.0.y));
     let (fz, k0, k1) = cell(p.z, period.map(|q| q.0.z));
     let (fw, l0, l1) = cell(t, period.map(|q| q.1));
     let one = F::c(1.0);
-    let c = |i, j, k, l, x, y, z, w| grad4::<F>(lattice_hash(&[i, j, k, l], seed), x, y, z, w);
+    // Closures capture by value, so that one compiled out of line reads only its arguments.
+    let c = move |i, j, k, l, x, y, z, w| grad4::<F>(lattice_hash(&[i, j, k, l], seed), x, y, z, w);
     let (u, v, s, r) = (fade(fx), fade(fy), fade(fz), fade(fw));
-    let slice = |l, gw: F| {
+    let slice = move |l, gw: F| {
         let x00 = lerp(u, c(i0, j0, k0, l, fx, fy, fz, gw), c(i1, j0, k0, l, fx - one, fy, fz, gw));
         let x10 = lerp(u, c(i0, j1, k0, l, fx, fy - one, fz, gw), c(i1, j1, k0, l, fx - one, fy - one, fz, gw));
         let x01 = lerp(u, c(i0, j0, k1, l, fx, fy, fz - one, gw), c(i1, j0, k1, l, fx - one, fy, fz - one, gw));
@@ -192,45 +207,101 @@ impl<F: ShadingFloat> NoiseDomain<F> {
     }
 }
 
-/// Signed noise of a domain (3D noise with unused axes at 0, plus 4D).
-#[inline]
+impl<F: Copy> NoiseDomain<F> {
+    /// `(dimensions, coordinates)`, unused coordinates filled with `fill`.
+    #[inline(always)]
+    fn to_coords(self, fill: F) -> (u8, [F; 4]) {
+        match self {
+            Self::D1(x) => (1, [x, fill, fill, fill]),
+            Self::D2(x, y) => (2, [x, y, fill, fill]),
+            Self::D3(p) => (3, [p.x, p.y, p.z, fill]),
+            Self::D4(p, t) => (4, [p.x, p.y, p.z, t]),
+        }
+    }
+
+    /// The domain of `dims` dimensions with coordinates `c` (inverse of `to_coords`).
+    #[inline(always)]
+    fn from_coords(dims: u8, c: [F; 4]) -> Self {
+        match dims {
+            1 => Self::D1(c[0]),
+            2 => Self::D2(c[0], c[1]),
+            3 => Self::D3(Vec3 { x: c[0], y: c[1], z: c[2] }),
+            _ => Self::D4(Vec3 { x: c[0], y: c[1], z: c[2] }, c[3]),
+        }
+    }
+}
+
+/// Signed noise of a domain of `dims` dimensions, optionally periodic (`period_dims > 0`),
+/// as a [`PureFn`] of the four coordinates followed by the four period coordinates: the one
+/// out-of-line noise function, so that dual numbers can take its value and its derivatives
+/// from separate calls (see [`ShadingFloat::apply`]).
+#[derive(Clone, Copy, Debug)]
+struct SignedNoise {
+    dims: u8,
+    period_dims: u8,
+    seed: u32,
+}
+
+impl PureFn<8> for SignedNoise {
+    #[inline]
+    fn eval<G: ShadingFloat>(&self, a: [G; 8]) -> G {
+        let d = NoiseDomain::from_coords(self.dims, [a[0], a[1], a[2], a[3]]);
+        let period =
+            (self.period_dims > 0).then(|| NoiseDomain::from_coords(self.period_dims, [a[4], a[5], a[6], a[7]]));
+        signed_at(d, period, self.seed)
+    }
+}
+
+/// Signed noise of a domain, through [`SignedNoise`].
+#[inline(always)]
 fn signed<F: ShadingFloat>(d: NoiseDomain<F>, period: Option<NoiseDomain<F>>, seed: u32) -> F {
-    // Unused axes sit at a non-lattice offset so 1D/2D noise is not identically 0 there.
+    let zero = F::c(0.0);
+    let (dims, c) = d.to_coords(zero);
+    let (period_dims, pc) = period.map_or((0, [zero; 4]), |p| p.to_coords(zero));
+    let f = SignedNoise { dims, period_dims, seed };
+    F::apply(&f, [c[0], c[1], c[2], c[3], pc[0], pc[1], pc[2], pc[3]])
+}
+
+/// Signed noise of a domain (3D noise with unused axes at 0, plus 4D).
+#[inline(always)]
+fn signed_at<F: ShadingFloat>(d: NoiseDomain<F>, period: Option<NoiseDomain<F>>, seed: u32) -> F {
+    // Unused axes sit at a non-lattice offset so 1D/2D noise is not identically 0 there; a
+    // period of another dimension than the domain's repeats nothing (1e9 cells). 1D to 3D
+    // share one (inlined) 3D noise.
     let off = F::c(0.5);
-    let n = match d {
-        NoiseDomain::D1(x) => perlin3(
-            Vec3::new(x, off, off),
-            period.map(|p| match p {
-                NoiseDomain::D1(px) => Vec3::new(px, F::c(1e9), F::c(1e9)),
-                _ => Vec3::splat(F::c(1e9)),
-            }),
-            seed,
-        ),
-        NoiseDomain::D2(x, y) => perlin3(
-            Vec3::new(x, y, off),
-            period.map(|p| match p {
-                NoiseDomain::D2(px, py) => Vec3::new(px, py, F::c(1e9)),
-                _ => Vec3::splat(F::c(1e9)),
-            }),
-            seed,
-        ),
-        NoiseDomain::D3(p) => perlin3(
-            p,
-            period.map(|q| match q {
-                NoiseDomain::D3(pp) => pp,
-                _ => Vec3::splat(F::c(1e9)),
-            }),
-            seed,
-        ),
-        NoiseDomain::D4(p, t) => perlin4(
-            p,
-            t,
-            period.map(|q| match q {
-                NoiseDomain::D4(pp, pt) => (pp, pt),
-                _ => (Vec3::splat(F::c(1e9)), F::c(1e9)),
-            }),
-            seed,
-        ),
+    let far = F::c(1e9);
+    let n = if let NoiseDomain::D4(p, t) = d {
+        let period = period.map(|q| match q {
+            NoiseDomain::D4(pp, pt) => (pp, pt),
+            _ => (Vec3::splat(far), far),
+        });
+        perlin4_at(p, t, period, seed)
+    } else {
+        let (p, period) = match d {
+            NoiseDomain::D1(x) => (
+                Vec3::new(x, off, off),
+                period.map(|q| match q {
+                    NoiseDomain::D1(px) => Vec3::new(px, far, far),
+                    _ => Vec3::splat(far),
+                }),
+            ),
+            NoiseDomain::D2(x, y) => (
+                Vec3::new(x, y, off),
+                period.map(|q| match q {
+                    NoiseDomain::D2(px, py) => Vec3::new(px, py, far),
+                    _ => Vec3::splat(far),
+                }),
+            ),
+            // (D4 took the branch above; naming it here keeps the match free of panics.)
+            NoiseDomain::D3(p) | NoiseDomain::D4(p, _) => (
+                p,
+                period.map(|q| match q {
+                    NoiseDomain::D3(pp) => pp,
+                    _ => Vec3::splat(far),
+                }),
+            ),
+        };
+        perlin3_at(p, period, seed)
     };
     // Non-finite input (NaN, ±inf: the fraction is NaN) reads as 0, so noise stays finite.
     F::select(n.is_nan(), F::c(0.0), clamp(n, F::c(-1.0), F::c(1.0)))
@@ -330,7 +401,7 @@ pub fn vcellnoise<F: ShadingFloat>(d: NoiseDomain<F>) -> Vec3<F> {
 
 /// Fractional Brownian motion: `Σ gain^o · snoise(lacunarity^o · p)` over `octaves` octaves.
 /// The octave count is uniform (a loop with a fixed trip count).
-#[inline]
+#[inline(always)]
 #[must_use]
 pub fn fbm<F: ShadingFloat>(d: NoiseDomain<F>, octaves: u32, lacunarity: f64, gain: f64) -> F {
     let mut sum = F::c(0.0);
@@ -345,7 +416,7 @@ pub fn fbm<F: ShadingFloat>(d: NoiseDomain<F>, octaves: u32, lacunarity: f64, ga
 }
 
 /// Turbulence: `Σ gain^o · |snoise(lacunarity^o · p)|` (the classic granite/marble sum).
-#[inline]
+#[inline(always)]
 #[must_use]
 pub fn turbulence<F: ShadingFloat>(d: NoiseDomain<F>, octaves: u32, lacunarity: f64, gain: f64) -> F {
     let mut sum = F::c(0.0);

@@ -77,7 +77,7 @@ impl SplineBasis {
 /// Works per lane: each lane may fall in a different segment (segments are blended by
 /// mask, so SIMD and intervals need no gather). Needs at least 4 knots; fewer gives the
 /// first knot (or zero).
-#[inline]
+#[inline(always)]
 #[must_use]
 pub fn spline<F, T>(basis: &SplineBasis, x: F, knots: &[T]) -> T
 where
@@ -93,18 +93,27 @@ where
     let t = xs - seg;
     let (t2, t3) = (t * t, t * t * t);
     let m = &basis.m;
-    let w: [F; 4] =
-        core::array::from_fn(|j| t3 * F::c(m[0][j]) + t2 * F::c(m[1][j]) + t * F::c(m[2][j]) + F::c(m[3][j]));
-    let eval = |s: usize| {
-        let k = &knots[s * basis.step..s * basis.step + 4];
+    // Everything here is inlined into the caller, so that parts of the result nobody reads
+    // (e.g. derivatives) are not computed: the weights without `array::from_fn` (whose
+    // closure stayed out of line), a segment as a function (a closure called from several
+    // places stayed out of line).
+    let wj = |j: usize| t3 * F::c(m[0][j]) + t2 * F::c(m[1][j]) + t * F::c(m[2][j]) + F::c(m[3][j]);
+    let w = [wj(0), wj(1), wj(2), wj(3)];
+    #[inline(always)]
+    fn segment<F: ShadingFloat, T: Add<Output = T> + Mul<F, Output = T> + Copy>(
+        knots: &[T],
+        at: usize,
+        w: &[F; 4],
+    ) -> T {
+        let k = &knots[at..at + 4];
         k[0] * w[0] + k[1] * w[1] + k[2] * w[2] + k[3] * w[3]
-    };
-    let mut result = eval(0);
+    }
+    let mut result = segment(knots, 0, &w);
     for s in 1..nseg {
         let here = seg.ge(F::c(s as f64));
         // Only segments some lane needs are evaluated.
         if crate::float::Mask::any(here) {
-            result = T::blend(here, eval(s), result);
+            result = T::blend(here, segment(knots, s * basis.step, &w), result);
         }
     }
     result
