@@ -1,4 +1,5 @@
-//! Rough timings (ignored by default): `cargo test -p anysl-jit --test perf_probe -- --ignored --nocapture`.
+//! Rough timings for iterating on the JIT without building the CLI (`anysl bench jit` is the
+//! benchmark): `cargo bench -p anysl-jit --bench perf_probe -- probe|overhead|spin_x8|dump_ir`.
 
 use anysl_core::points::{shade_points, PointSet, ShadeOut};
 use anysl_jit::{compile, JitOptions, JitShader, Variant};
@@ -11,8 +12,6 @@ fn rsl_dir() -> PathBuf {
     PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../shaders/rsl"))
 }
 
-#[test]
-#[ignore]
 fn probe() {
     let set = PointSet::random(1 << 15, 1);
     // `LIGHTS=none` shades without lights (the cost of everything but the light loops).
@@ -50,8 +49,6 @@ fn probe() {
     }
 }
 
-#[test]
-#[ignore]
 fn dump_ir() {
     let name = std::env::var("SHADER").unwrap_or_else(|_| "plastic".into());
     let path = rsl_dir().join(format!("{name}.sl"));
@@ -61,8 +58,6 @@ fn dump_ir() {
 }
 
 /// One shader's jit-x8 in a loop, for `perf record` (`SHADER=brick`).
-#[test]
-#[ignore]
 fn spin_x8() {
     let name = std::env::var("SHADER").unwrap_or_else(|_| "plastic".into());
     let set = PointSet::random(1 << 14, 1);
@@ -113,8 +108,6 @@ fn spin_x8() {
 
 /// Fixed cost per call: `SHADER` (a `shaders/rsl/standard` or Table-1 name) JIT x8 against its
 /// generated-Rust twin (`anysl_shaders::rsl`), 7 interleaved runs, best of each.
-#[test]
-#[ignore]
 fn overhead() {
     let set = PointSet::random(1 << 15, 1);
     let lights = table1_lights();
@@ -138,5 +131,20 @@ fn overhead() {
         }
         let n = set.len() as f64 / 8.0;
         eprintln!("{name:10} jit {:7.1} ns/call  generated-rust {:7.1} ns/call", bj / n * 1e9, ba / n * 1e9);
+    }
+}
+
+fn main() {
+    // `cargo bench` passes `--bench`; the first other argument names the probe.
+    let which = std::env::args().skip(1).find(|a| !a.starts_with('-')).unwrap_or_else(|| "probe".into());
+    match which.as_str() {
+        "probe" => probe(),
+        "overhead" => overhead(),
+        "spin_x8" => spin_x8(),
+        "dump_ir" => dump_ir(),
+        other => {
+            eprintln!("perf_probe: unknown probe `{other}` (choices: probe, overhead, spin_x8, dump_ir)");
+            std::process::exit(2);
+        }
     }
 }

@@ -1,5 +1,5 @@
-//! Shading-time probe of the Table-1 workload (ignored by default; `anysl bench table1` is the
-//! benchmark): `cargo test --release -p anysl-renderers --test table1_probe -- --ignored --nocapture`.
+//! Shading-time probe of the Table-1 workload (`anysl bench table1` is the benchmark; this is for
+//! iterating without building the CLI): `cargo bench -p anysl-renderers --bench table1_probe`.
 //! `SHADERS=phong,checker` picks shaders, `SIZE=256` the image, `RUNS=3` the runs (median);
 //! `SPIN=phong:f32x8` renders one variant for 5 s for `perf record`.
 
@@ -21,8 +21,6 @@ fn render(scene: &Scene<Surface, Light>, opts: &RenderOptions, variant: &str) ->
     }
 }
 
-#[test]
-#[ignore]
 fn table1_shading() {
     let size: u32 = env("SIZE", "256").parse().unwrap();
     let runs: usize = env("RUNS", "3").parse().unwrap();
@@ -67,4 +65,8 @@ fn table1_shading() {
         sums[2] / n as f64,
         sums[3] / n as f64
     );
+}
+
+fn main() {
+    table1_shading();
 }

@@ -1,5 +1,5 @@
 //! Quick timing probe for the kernel benchmark's two ratios (not a test of correctness; run
-//! with `cargo test --release -p anysl-shaders --test perf_probe -- --ignored --nocapture`):
+//! with `cargo bench -p anysl-shaders --bench perf_probe`):
 //! generic `F32x8` Phong and Checker against the hand-written `wide::f32x8` kernels, and
 //! `Dual<f32>` against `f32` on every shader. Runs are interleaved; the median is reported.
 
@@ -70,8 +70,6 @@ fn time(surface: &Surface, lights: &[Light], set: &PointSet, runners: &[Runner],
         .collect()
 }
 
-#[test]
-#[ignore = "timing probe; run explicitly in release"]
 fn generic_vs_native_and_dual_vs_f32() {
     let lights = table1_lights();
     let set = PointSet::random(32768, 0x5eed_2010);
@@ -105,4 +103,8 @@ fn generic_vs_native_and_dual_vs_f32() {
             t[0] / t[1]
         );
     }
+}
+
+fn main() {
+    generic_vs_native_and_dual_vs_f32();
 }
