@@ -56,7 +56,7 @@
 //! gives `0 · ∞ = NaN`), and `pow(ndh, 1/roughness)` with roughness 0 keeps finite
 //! derivatives. Derivatives of NaN or infinite values are unspecified (they may be NaN). Other
 //! than in division, a genuine overflow of a finite derivative times a large factor still
-//! gives ±∞, as any product would. `tests/tests/stability.rs` checks the policy at each of
+//! gives ±∞, as any product would. `tests/tests/integration/stability.rs` checks the policy at each of
 //! these points for `Dual<f32>`, `Dual<f64>` and `Dual<F32x8>`.
 //!
 //! ## Outward rounding margins

@@ -1,4 +1,4 @@
-//! Section f: stability. Representative cases of `tests/tests/stability.rs` run through the
+//! Section f: stability. Representative cases of `tests/tests/integration/stability.rs` run through the
 //! library directly (the test suite runs each for f32, f64, F32x8 and dual numbers); each case
 //! states its expected outcome and whether it held.
 
@@ -254,8 +254,8 @@ const CASES: &[Case] = &[
 /// Runs the cases.
 pub fn section(_: &Sizes) -> Result<Section, String> {
     let mut html = String::from(
-        "<p>Representative cases of the stability suite (<code>tests/tests/stability.rs</code>, run by \
-         <code>cargo test --test stability</code> for f32, f64, F32x8 and dual numbers), run here through the \
+        "<p>Representative cases of the stability suite (<code>tests/tests/integration/stability.rs</code>, run by \
+         <code>cargo test -p anysl-tests --test integration stability::</code> for f32, f64, F32x8 and dual numbers), run here through the \
          library directly. Each states its expected outcome.</p><table><tr><th>case</th><th>expected</th>\
          <th>observed</th><th>result</th></tr>\n",
     );

@@ -1,7 +1,7 @@
 //! Intervals through the shared code: three-valued masks, `Exec` branches and loops, and
 //! noise / cellnoise through `IBits`.
 
-mod common;
+use crate::common;
 
 use anysl_ad::{IBits, IMask, Interval};
 use anysl_core::stdlib::{cellnoise, noise3, NoiseDomain};

@@ -3,7 +3,7 @@
 //! samples each; the result must contain the inner f32 function *and* the f64 function at
 //! every sample where they are not NaN. Plus tightness checks, constants and the NaN policy.
 
-mod common;
+use crate::common;
 
 use anysl_ad::Interval;
 use anysl_core::{Mask, ShadingFloat};

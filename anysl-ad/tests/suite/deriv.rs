@@ -1,7 +1,7 @@
 //! RSL derivative built-ins of `anysl_core::stdlib` through `Dual`, with `Globals` whose u
 //! and v carry screen-space derivatives, against analytic values.
 
-mod common;
+use crate::common;
 
 use anysl_ad::Dual;
 use anysl_core::stdlib::{

@@ -7,7 +7,7 @@
 //! single primitives agree to 1e-6 relative, and compositions (≈ 10 operations) to 1e-5
 //! of the size of their O(1) terms (a result may cancel to near 0).
 
-mod common;
+use crate::common;
 
 use anysl_ad::{Dual, Interval};
 use anysl_core::stdlib::smoothstep;

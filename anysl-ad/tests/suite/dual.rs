@@ -10,7 +10,7 @@
 //! `Dual<f32>` derivative is a chain of a few f32 operations of ≤ 1 ulp each (libm included),
 //! i.e. ≤ ~5e-7 relative, so `1e-5·(|fd| + 1)` leaves a margin of 20×.
 
-mod common;
+use crate::common;
 
 use anysl_ad::{Dual, Interval};
 use anysl_core::stdlib::{smoothstep, snoise3};

@@ -1,7 +1,7 @@
 //! What the shading interface must do in a scene: shadows, transparency, reflection rays and
 //! screen-space derivatives.
 
-mod common;
+use crate::common;
 
 use anysl_renderers::{
     render_packet, render_packet_split, render_pbrt, render_scalar, Camera, Image, Instance, Integrator, Mesh,

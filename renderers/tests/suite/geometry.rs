@@ -1,7 +1,7 @@
 //! Geometry: the BVH agrees with the brute-force intersector, the triangulated sphere and
 //! the camera give the analytic hit mask, the embedded bunny loads.
 
-mod common;
+use crate::common;
 
 use anysl_core::points::SplitMix64;
 use anysl_renderers::{scenes, Camera};

@@ -1,6 +1,6 @@
 //! The hand-written SIMD shaders compute what the generic ones compute for `F32x8`.
 
-mod common;
+use crate::common;
 
 use anysl_core::prelude::*;
 use anysl_core::PointContext;

@@ -1,6 +1,6 @@
 //! The light shaders: values against the classic formulas, f32 against f64, dispatch.
 
-mod common;
+use crate::common;
 
 use anysl_core::prelude::*;
 use anysl_core::PointContext;

@@ -1,6 +1,6 @@
 //! Every surface, instantiated with f32 and with the f64 oracle, on random shading points.
 
-mod common;
+use crate::common;
 
 use anysl_core::{Exec, Globals, PointContext, Shader, SurfaceShader};
 use anysl_shaders::{table1_lights, Light, Plastic, PointLight, Screen, SpotLight, Surface};

@@ -5,7 +5,7 @@
 //! and active pbrt renderers are deterministic. What remains is the difference between
 //! number types (f32, SIMD lanes, f64), which must stay far below 40 dB.
 
-mod common;
+use crate::common;
 
 use anysl_core::{Blend, ShadingFloat};
 use anysl_renderers::{

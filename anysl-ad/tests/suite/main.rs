@@ -1,0 +1,10 @@
+//! One test binary for the files beside this one (one link, and generic shader code
+//! monomorphized once instead of once per file). `cargo test -p <crate> --test suite <module>::`
+//! runs one file's tests.
+
+mod common;
+mod deriv;
+mod dual;
+mod interval;
+mod interval_flow;
+mod simd;
