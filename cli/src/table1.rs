@@ -16,8 +16,7 @@
 
 use anysl_core::{Color, Globals, SurfaceOutput};
 use anysl_renderers::{
-    render_packet_stats, render_packet_with, scenes, Image, KernelShading, PacketStats, PlainShading, RenderOptions,
-    Scene,
+    render_packet_stats, render_packet_with, scenes, Image, KernelShading, PlainShading, RenderOptions, Scene,
 };
 use anysl_shaders::native::{checker_x8, native_lights, plastic_x8, NativePointLight, PointsX8};
 use anysl_shaders::{table1_lights, Light, Surface};
@@ -92,22 +91,10 @@ impl Native {
     }
 }
 
-/// Median frame and shading time of `runs` renders, and the last picture.
-fn measure(runs: usize, mut render: impl FnMut() -> (Image, PacketStats)) -> (Image, f64, f64) {
-    let mut frames = Vec::with_capacity(runs);
-    let mut shading = Vec::with_capacity(runs);
-    let mut last = None;
-    for _ in 0..runs.max(1) {
-        let (img, stats) = render();
-        frames.push(stats.total);
-        shading.push(stats.shading);
-        last = Some(img);
-    }
-    let median = |mut v: Vec<Duration>| {
-        v.sort();
-        v[v.len() / 2].as_secs_f64()
-    };
-    (last.expect("at least one run"), median(frames), median(shading))
+/// Median of durations, in seconds.
+fn median(mut v: Vec<Duration>) -> f64 {
+    v.sort();
+    v[v.len() / 2].as_secs_f64()
 }
 
 /// Runs the benchmark; `pb` counts renders.
@@ -117,8 +104,9 @@ pub fn run(opts: &Table1Opts, pb: &ProgressBar) -> Result<Vec<Table1Row>, String
     let native = Native { lights: points, ambient };
     let kernel = |s: &Surface, g: &Globals<F32x8>| native.shade(s, g);
     let ropts = RenderOptions { threads: opts.threads, shadows: false, derivatives: false, ..RenderOptions::default() };
+    let runs = opts.runs.max(1);
     let mut rows = Vec::new();
-    pb.set_length((Surface::NAMES.len() * (4 * opts.runs.max(1) + 1) + 2 * opts.runs.max(1)) as u64);
+    pb.set_length((Surface::NAMES.len() * (4 * runs + 1) + 2 * runs) as u64);
     for name in Surface::NAMES {
         pb.set_message(name);
         let surface = Surface::by_name(name).ok_or_else(|| format!("unknown shader {name}"))?;
@@ -126,32 +114,39 @@ pub fn run(opts: &Table1Opts, pb: &ProgressBar) -> Result<Vec<Table1Row>, String
         let scene: Scene<Surface, Light> = scenes::table1(surface, lights.clone(), opts.size);
         let reference = render_packet_with::<f64, _, _, _>(&scene, &ropts, 8, PlainShading).0;
         pb.inc(1);
-        let mut measured: Vec<(&str, Image, f64, f64)> = Vec::new();
-        for variant in VARIANTS {
-            let timed = |f: &dyn Fn() -> (Image, PacketStats)| {
-                measure(opts.runs, || {
-                    let r = f();
-                    pb.inc(1);
-                    r
-                })
-            };
-            let (img, frame, shading) = match variant {
-                "f32" => timed(&|| render_packet_stats::<f32, _, _>(&scene, &ropts, 8)),
-                "f32x4" => timed(&|| render_packet_stats::<F32x4, _, _>(&scene, &ropts, 4)),
-                "f32x8" => timed(&|| render_packet_stats::<F32x8, _, _>(&scene, &ropts, 8)),
-                "f32x16" => timed(&|| render_packet_stats::<F32x16, _, _>(&scene, &ropts, 16)),
-                _ if has_native => timed(&|| {
-                    render_packet_with::<F32x8, _, _, _>(
-                        &scene,
-                        &ropts,
-                        8,
-                        KernelShading { kernel: &kernel, fallback: PlainShading },
-                    )
-                }),
-                _ => continue,
-            };
-            measured.push((variant, img, frame, shading));
+        let variants: Vec<&str> = VARIANTS.iter().copied().filter(|v| *v != "native-f32x8" || has_native).collect();
+        let render = |variant: &str| match variant {
+            "f32" => render_packet_stats::<f32, _, _>(&scene, &ropts, 8),
+            "f32x4" => render_packet_stats::<F32x4, _, _>(&scene, &ropts, 4),
+            "f32x8" => render_packet_stats::<F32x8, _, _>(&scene, &ropts, 8),
+            "f32x16" => render_packet_stats::<F32x16, _, _>(&scene, &ropts, 16),
+            _ => render_packet_with::<F32x8, _, _, _>(
+                &scene,
+                &ropts,
+                8,
+                KernelShading { kernel: &kernel, fallback: PlainShading },
+            ),
+        };
+        // Round-robin over the variants, so a slow spell of this shared machine lands on every
+        // variant of a round instead of on all runs of one variant; medians per variant.
+        let mut frames: Vec<Vec<Duration>> = vec![Vec::with_capacity(runs); variants.len()];
+        let mut shading: Vec<Vec<Duration>> = vec![Vec::with_capacity(runs); variants.len()];
+        let mut images: Vec<Option<Image>> = vec![None; variants.len()];
+        for _ in 0..runs {
+            for (k, variant) in variants.iter().enumerate() {
+                let (img, stats) = render(variant);
+                frames[k].push(stats.total);
+                shading[k].push(stats.shading);
+                images[k] = Some(img);
+                pb.inc(1);
+            }
         }
+        let measured: Vec<(&str, Image, f64, f64)> = variants
+            .iter()
+            .zip(images)
+            .zip(frames.into_iter().zip(shading))
+            .map(|((v, img), (f, s))| (*v, img.expect("at least one run"), median(f), median(s)))
+            .collect();
         let (base_frame, base_shading) = (measured[0].2, measured[0].3);
         for (variant, img, frame, shading) in measured {
             let shading_speedup = base_shading / shading.max(1e-12);
