@@ -1,14 +1,9 @@
-//! One test binary for the files beside this one (one link, and generic shader code
-//! monomorphized once instead of once per file). `cargo test -p <crate> --test integration <module>::`
-//! runs one file's tests.
+//! The shader-instantiation half of the cross-crate tests, one test binary (generic shader code
+//! monomorphized and linked once instead of once per file; the `.sl` half is `tests/rsl/`).
+//! `cargo test -p anysl-tests --test integration <module>::` runs one file's tests.
 
 mod control_flow;
 mod instantiations;
-mod jit_check;
 mod renderers_agree;
-mod rsl_conformance_generated;
-mod rsl_conformance_interp;
-mod rsl_generated;
-mod rsl_interp_render;
 mod stability;
 mod workload;
