@@ -4,49 +4,13 @@
 //! `Dual<f32>` against `f32` on every shader. Runs are interleaved; the median is reported.
 
 use anysl_ad::Dual;
-use anysl_core::points::{field, shade_points, PointSet, ShadeOut};
-use anysl_shaders::native::{checker_x8, native_lights, plastic_x8, PointsX8};
+use anysl_core::points::{shade_points, PointSet, ShadeOut};
+use anysl_shaders::native::shade_point_set;
 use anysl_shaders::{table1_lights, Light, Surface};
 use anysl_simd::F32x8;
 use std::time::Instant;
-use wide::f32x8;
 
 type Runner = fn(&Surface, &[Light], &PointSet, &mut ShadeOut<f32>);
-
-#[inline(always)]
-fn load8(set: &PointSet, k: usize, i: usize) -> f32x8 {
-    let a: [f32; 8] = set.field(k)[i..i + 8].try_into().expect("8 lanes");
-    f32x8::from(a)
-}
-
-/// The native kernels over a point set.
-#[inline(never)]
-fn native(surface: &Surface, lights: &[Light], set: &PointSet, out: &mut ShadeOut<f32>) {
-    let (points, ambient) = native_lights(lights).expect("point and ambient lights");
-    let one = [f32x8::splat(1.0); 3];
-    let l3 = |k, i| [load8(set, k, i), load8(set, k + 1, i), load8(set, k + 2, i)];
-    let mut i = 0;
-    while i + 8 <= set.len() {
-        let x = PointsX8 {
-            p: l3(field::P, i),
-            n: l3(field::N, i),
-            i: l3(field::I, i),
-            s: load8(set, field::S, i),
-            t: load8(set, field::T, i),
-            cs: one,
-            os: one,
-        };
-        let (ci, oi) = match surface {
-            Surface::Plastic(p) => plastic_x8(p, &points, ambient, &x),
-            Surface::Checker(c) => checker_x8(c, &points, ambient, &x),
-            _ => unreachable!("native kernels exist for plastic and checker"),
-        };
-        for (ch, v) in ci.iter().chain(oi.iter()).enumerate() {
-            out.channels[ch][i..i + 8].copy_from_slice(&v.to_array());
-        }
-        i += 8;
-    }
-}
 
 /// Median seconds per run of each runner, timed round-robin.
 fn time(surface: &Surface, lights: &[Light], set: &PointSet, runners: &[Runner], rounds: usize) -> Vec<f64> {
@@ -79,7 +43,7 @@ fn generic_vs_native_and_dual_vs_f32() {
     let want = |n: &str| only.is_empty() || only.iter().any(|o| o == n);
     for name in ["phong", "checker"].into_iter().filter(|n| want(n)) {
         let s = Surface::by_name(name).expect("known");
-        let t = time(&s, &lights, &set, &[shade_points::<F32x8, Surface, Light>, native], rounds);
+        let t = time(&s, &lights, &set, &[shade_points::<F32x8, Surface, Light>, shade_point_set], rounds);
         println!(
             "{name:<9} generic-x8 {:7.2} Mpts/s  native-x8 {:7.2} Mpts/s  generic/native time {:.3}",
             set.len() as f64 / t[0] / 1e6,

@@ -212,3 +212,61 @@ pub fn checker_x8(params: &Checker, lights: &[NativePointLight], ambient: [f32; 
     );
     (ci, x.os)
 }
+
+#[inline(always)]
+fn load8(set: &anysl_core::points::PointSet, k: usize, i: usize) -> f32x8 {
+    let a: [f32; 8] = set.field(k)[i..i + 8].try_into().expect("8 lanes");
+    f32x8::from(a)
+}
+
+/// A shading loop over a point set: the signature of the kernel benchmark's runners.
+pub type PointSetRunner =
+    fn(&crate::dispatch::Surface, &[Light], &anysl_core::points::PointSet, &mut anysl_core::points::ShadeOut<f32>);
+
+/// The hand-written kernel of `surface` (plastic or checker; `None` for any other shader) over
+/// a point set, 8 points at a time, with the same signature as the generic instantiations'
+/// runners — the "native" rows of the kernel benchmark.
+pub fn point_set_runner(surface: &crate::dispatch::Surface) -> Option<PointSetRunner> {
+    use crate::dispatch::Surface;
+    match surface {
+        Surface::Plastic(_) | Surface::Checker(_) => Some(shade_point_set),
+        _ => None,
+    }
+}
+
+/// [`point_set_runner`]'s kernel loop. Panics if `surface` has no native kernel or `lights`
+/// are not all point and ambient lights.
+#[inline(never)]
+pub fn shade_point_set(
+    surface: &crate::dispatch::Surface,
+    lights: &[Light],
+    set: &anysl_core::points::PointSet,
+    out: &mut anysl_core::points::ShadeOut<f32>,
+) {
+    use crate::dispatch::Surface;
+    use anysl_core::points::field;
+    let (points, ambient) = native_lights(lights).expect("native kernels need point and ambient lights");
+    let one = [f32x8::splat(1.0); 3];
+    let load3 = |k, i| [load8(set, k, i), load8(set, k + 1, i), load8(set, k + 2, i)];
+    let mut i = 0;
+    while i + 8 <= set.len() {
+        let x = PointsX8 {
+            p: load3(field::P, i),
+            n: load3(field::N, i),
+            i: load3(field::I, i),
+            s: load8(set, field::S, i),
+            t: load8(set, field::T, i),
+            cs: one,
+            os: one,
+        };
+        let (ci, oi) = match surface {
+            Surface::Plastic(p) => plastic_x8(p, &points, ambient, &x),
+            Surface::Checker(c) => checker_x8(c, &points, ambient, &x),
+            _ => panic!("native kernels exist for plastic and checker only"),
+        };
+        for (ch, v) in ci.iter().chain(oi.iter()).enumerate() {
+            out.channels[ch][i..i + 8].copy_from_slice(&v.to_array());
+        }
+        i += 8;
+    }
+}
