@@ -141,8 +141,8 @@ pub struct Cg<'c, 'm> {
     slots: Vec<SlotStore<'c>>,
     strs: HashMap<u32, Vec<String>>,
     st: Option<FnState<'c>>,
-    rt_v: [usize; 5],
-    rt_u: [usize; 5],
+    rt_v: fn(RtKind, u32) -> usize,
+    rt_u: fn(RtKind, u32) -> usize,
     body_count: u32,
     shapes: HashMap<String, Vec<Shape>>,
     /// Extra function attributes (`target-cpu`, `target-features`).
@@ -151,14 +151,39 @@ pub struct Cg<'c, 'm> {
     pub threaded_fns: usize,
     /// Where the globals lie in the renderer's `Globals` struct.
     pub layout: abi::GlobalsLayout,
+    /// The light sums of the last `specular` call ([`Cg::specular`]).
+    lit: Option<LitMemo<'c>>,
+}
+
+/// What a `specular` call left for the `diffuse` and `ambient` calls after it: its light loop
+/// also summed `diffuse(N)` and, when the shader calls `ambient()`, the ambient light, under
+/// the same mask. Kept in stack slots of the function that made the call; a later call
+/// compares its normal and mask with the stored ones and takes the stored sums when they
+/// are equal, else calls the renderer. When the values are the same SSA values — the usual
+/// `ambient() + diffuse(Nf) + specular(Nf, V, roughness)` — LLVM folds the comparison and
+/// the later calls disappear.
+#[derive(Clone, Copy)]
+struct LitMemo<'c> {
+    f: FunctionValue<'c>,
+    valid: PointerValue<'c>,
+    n: [PointerValue<'c>; 3],
+    mask: PointerValue<'c>,
+    diff: [PointerValue<'c>; 3],
+    amb: Option<[PointerValue<'c>; 3]>,
 }
 
 const SHADE_NAME: &str = "anysl_shade";
 
 impl<'c, 'm> Cg<'c, 'm> {
-    /// A generator for `func` with target `t`; `rt_v`/`rt_u` are the runtime tables of the
-    /// varying float type and of `f32`.
-    pub fn new(cx: &'c Context, func: &'m Function, t: Target, rt_v: [usize; 5], rt_u: [usize; 5]) -> Self {
+    /// A generator for `func` with target `t`; `rt_v`/`rt_u` resolve runtime calls
+    /// ([`rt::rt_addr`]) for the varying float type and for `f32`.
+    pub fn new(
+        cx: &'c Context,
+        func: &'m Function,
+        t: Target,
+        rt_v: fn(RtKind, u32) -> usize,
+        rt_u: fn(RtKind, u32) -> usize,
+    ) -> Self {
         let m = cx.create_module("shader");
         Self {
             cx,
@@ -175,6 +200,7 @@ impl<'c, 'm> Cg<'c, 'm> {
             rt_v,
             rt_u,
             body_count: 0,
+            lit: None,
             shapes: HashMap::new(),
             fn_attrs: Vec::new(),
             threaded_fns: 0,
@@ -624,7 +650,7 @@ impl<'c, 'm> Cg<'c, 'm> {
     /// argument is uniform and `force_varying` is false.
     fn rt_call(&mut self, kind: RtKind, aux: u32, args: &[S<'c>], n_out: usize, force_varying: bool) -> Vec<S<'c>> {
         let uni = !force_varying && args.iter().all(|a| a.r == Repr::U);
-        let addr = if uni { self.rt_u[kind as usize] } else { self.rt_v[kind as usize] };
+        let addr = if uni { (self.rt_u)(kind, aux) } else { (self.rt_v)(kind, aux) };
         let fnp = self.const_fn_ptr(addr);
         self.callback(fnp, aux, args, n_out, uni)
     }
@@ -742,6 +768,179 @@ impl<'c, 'm> Cg<'c, 'm> {
             )
             .expect("call");
         self.unspill(out, n_out, uni)
+    }
+
+    /// Emits call `v`: threaded (a call of its target-library function) or inline.
+    fn emit_call(&mut self, v: Value, args: Vec<Val<'c>>) -> R<Val<'c>> {
+        if self.t.threaded {
+            self.threaded(v, args)
+        } else {
+            let out = self.op_body(v, &args)?;
+            self.finish_outputs(v, out)
+        }
+    }
+
+    /// How many light sums beyond its own a `specular` call with `args` (N, V, roughness)
+    /// returns: 1 (`diffuse(N)`), 2 (and `ambient()`, when the shader calls it), or `None`
+    /// (dual numbers: the derivatives of the sums would have to be kept as well).
+    fn lit_sums(&self, args: &[S<'c>]) -> Option<u32> {
+        if self.t.dual || args.len() != 7 {
+            return None;
+        }
+        let amb = self.func.insts.iter().any(|i| matches!(&i.op, Op::Call { name, .. } if name == "ambient"));
+        Some(if amb { 2 } else { 1 })
+    }
+
+    /// Call `v`, with the light sums of `specular` kept for the `diffuse(N)` and `ambient()`
+    /// calls after it ([`LitMemo`]).
+    fn lit_call(&mut self, v: Value, args: Vec<Val<'c>>) -> R<Val<'c>> {
+        let name = match &self.func.inst(v).op {
+            Op::Call { name, .. } => name.clone(),
+            _ => return self.emit_call(v, args),
+        };
+        let triple = |a: Option<&Val<'c>>| match a {
+            Some(Val::Num(c)) if c.len() == 3 && c.iter().all(|s| s.d.is_none()) => Some(c.clone()),
+            _ => None,
+        };
+        match name.as_str() {
+            "specular" => {
+                let n = triple(args.first());
+                let r = self.emit_call(v, args)?;
+                match (r, n) {
+                    (Val::Num(c), Some(n)) if c.len() == 6 || c.len() == 9 => {
+                        self.lit_store(&n, &c[3..]);
+                        Ok(Val::Num(c[..3].to_vec()))
+                    }
+                    (r, _) => Ok(r),
+                }
+            }
+            "diffuse" | "ambient" => {
+                let f = self.cur_fn();
+                let n = if name == "diffuse" { triple(args.first()) } else { None };
+                let memo = match self.lit {
+                    Some(m) if m.f == f && (n.is_some() || (name == "ambient" && m.amb.is_some())) => m,
+                    _ => return self.emit_call(v, args),
+                };
+                self.lit_guarded(memo, n.as_deref(), |cg| cg.emit_call(v, args))
+            }
+            _ => self.emit_call(v, args),
+        }
+    }
+
+    /// Keeps the sums `extra` (diffuse, then ambient if present) of a `specular(n, …)` call.
+    fn lit_store(&mut self, n: &[S<'c>], extra: &[S<'c>]) {
+        let f = self.cur_fn();
+        let amb = extra.len() == 6;
+        let memo = match self.lit {
+            Some(m) if m.f == f && m.amb.is_some() == amb => m,
+            _ => {
+                let vt = self.vt();
+                let slot = |cg: &Self| cg.entry_alloca(vt);
+                let valid = self.entry_alloca(self.cx.bool_type().into());
+                // `false` at entry: stored right after the alloca.
+                let entry = f.get_first_basic_block().expect("entry");
+                let tb = self.cx.create_builder();
+                match valid.as_instruction_value().and_then(|i| i.get_next_instruction()) {
+                    Some(i) => tb.position_before(&i),
+                    None => tb.position_at_end(entry),
+                }
+                tb.build_store(valid, self.cx.bool_type().const_zero()).expect("store");
+                let m = LitMemo {
+                    f,
+                    valid,
+                    n: [slot(self), slot(self), slot(self)],
+                    mask: self.entry_alloca(self.mty(false)),
+                    diff: [slot(self), slot(self), slot(self)],
+                    amb: amb.then(|| [slot(self), slot(self), slot(self)]),
+                };
+                self.lit = Some(m);
+                m
+            }
+        };
+        for c in 0..3 {
+            self.b.build_store(memo.n[c], self.to(n[c], Repr::V).v).expect("store");
+            self.b.build_store(memo.diff[c], self.to(extra[c], Repr::V).v).expect("store");
+            if let Some(a) = memo.amb {
+                self.b.build_store(a[c], self.to(extra[3 + c], Repr::V).v).expect("store");
+            }
+        }
+        let m = self.splat_mask(self.load_mask(self.st().mask));
+        self.b.build_store(memo.mask, m.v).expect("store");
+        self.b.build_store(memo.valid, self.cx.bool_type().const_int(1, false)).expect("store");
+    }
+
+    /// `diffuse(n)` (`Some`) or `ambient()` (`None`): the sums `memo` kept when its normal
+    /// and mask are this call's (bitwise, every lane), else `call`.
+    fn lit_guarded(
+        &mut self,
+        memo: LitMemo<'c>,
+        n: Option<&[S<'c>]>,
+        call: impl FnOnce(&mut Self) -> R<Val<'c>>,
+    ) -> R<Val<'c>> {
+        let f = self.cur_fn();
+        let all_eq = |cg: &Self, a: BasicValueEnum<'c>, b: BasicValueEnum<'c>| -> IntValue<'c> {
+            let (a, b) = if a.get_type() == cg.vt() {
+                let it: BasicTypeEnum<'c> = if cg.t.lanes == 1 {
+                    cg.cx.i32_type().into()
+                } else {
+                    cg.cx.i32_type().vec_type(cg.t.lanes).into()
+                };
+                (cg.b.build_bit_cast(a, it, "").expect("bitcast"), cg.b.build_bit_cast(b, it, "").expect("bitcast"))
+            } else {
+                (a, b)
+            };
+            match (a, b) {
+                (BasicValueEnum::IntValue(x), BasicValueEnum::IntValue(y)) => {
+                    cg.b.build_int_compare(IntPredicate::EQ, x, y, "").expect("icmp")
+                }
+                (BasicValueEnum::VectorValue(x), BasicValueEnum::VectorValue(y)) => {
+                    let e = cg.b.build_int_compare(IntPredicate::EQ, x, y, "").expect("icmp");
+                    cg.call_intr("llvm.vector.reduce.and", &[e.get_type().into()], &[e.into()]).into_int_value()
+                }
+                _ => unreachable!("masks and floats"),
+            }
+        };
+        let mut hit = self.b.build_load(memo.valid, "").expect("load").into_int_value();
+        let m = self.splat_mask(self.load_mask(self.st().mask));
+        let mm = self.b.build_load(memo.mask, "").expect("load");
+        let e = all_eq(self, m.v, mm);
+        hit = self.b.build_and(hit, e, "").expect("and");
+        if let Some(n) = n {
+            for c in 0..3 {
+                let v = self.to(n[c], Repr::V).v;
+                let kept = self.b.build_load(memo.n[c], "").expect("load");
+                let e = all_eq(self, v, kept);
+                hit = self.b.build_and(hit, e, "").expect("and");
+            }
+        }
+        let kept = match n {
+            Some(_) => memo.diff,
+            None => memo.amb.expect("ambient kept"),
+        };
+        let hb = self.cx.append_basic_block(f, "lit.kept");
+        let mb = self.cx.append_basic_block(f, "lit.call");
+        let jb = self.cx.append_basic_block(f, "lit.join");
+        self.b.build_conditional_branch(hit, hb, mb).expect("br");
+        self.b.position_at_end(hb);
+        let kv: Vec<BasicValueEnum<'c>> = kept.iter().map(|p| self.b.build_load(*p, "").expect("load")).collect();
+        self.b.build_unconditional_branch(jb).expect("br");
+        self.b.position_at_end(mb);
+        let cv: Vec<BasicValueEnum<'c>> = match call(self)? {
+            Val::Num(c) if c.len() == 3 => c.into_iter().map(|s| self.to(s, Repr::V).v).collect(),
+            _ => return err("light sum of unexpected shape"),
+        };
+        let mb_end = self.b.get_insert_block().expect("bb");
+        self.b.build_unconditional_branch(jb).expect("br");
+        self.b.position_at_end(jb);
+        Ok(Val::Num(
+            (0..3)
+                .map(|c| {
+                    let phi = self.b.build_phi(self.vt(), "").expect("phi");
+                    phi.add_incoming(&[(&kv[c], hb), (&cv[c], mb_end)]);
+                    S { r: Repr::V, v: phi.as_basic_value(), d: None }
+                })
+                .collect(),
+        ))
     }
 
     fn host_call(&mut self, idx: usize, aux: u32, args: &[S<'c>], n_out: usize) -> Vec<S<'c>> {
@@ -1705,12 +1904,7 @@ impl<'c, 'm> Cg<'c, 'm> {
                     };
                     args.push(x);
                 }
-                if self.t.threaded {
-                    self.threaded(v, args)?
-                } else {
-                    let out = self.op_body(v, &args)?;
-                    self.finish_outputs(v, out)?
-                }
+                self.lit_call(v, args)?
             }
         };
         let result = match result {
@@ -2614,7 +2808,14 @@ impl<'c> Cg<'c, '_> {
             }
             "ambient" => Val::Num(self.host_call(host::AMBIENT, 0, &[], 3)),
             "diffuse" => Val::Num(self.host_call(host::DIFFUSE, 0, &nums(self, 0)?, 3)),
-            "specular" => Val::Num(self.host_call(host::SPECULAR, 0, &flat_args(self, 0..3)?, 3)),
+            "specular" => {
+                let args = flat_args(self, 0..3)?;
+                match self.lit_sums(&args) {
+                    // specular ++ diffuse [++ ambient]; the call site keeps the sums.
+                    Some(k) => Val::Num(self.host_call(host::SPECULAR, k, &args, 3 + 3 * k as usize)),
+                    None => Val::Num(self.host_call(host::SPECULAR, 0, &args, 3)),
+                }
+            }
             "phong" => Val::Num(self.host_call(host::PHONG, 0, &flat_args(self, 0..3)?, 3)),
             "trace" => Val::Num(self.host_call(host::TRACE, 0, &flat_args(self, 0..2)?, 3)),
             "concat" => Val::Str(vec![args.iter().map(Self::as_str).collect()]),

@@ -29,7 +29,7 @@ mod shader;
 pub use anysl_rsl as rsl;
 pub use shader::{variant_of, JitShader};
 
-use abi::{JitFloat, ShadeFn};
+use abi::ShadeFn;
 use anysl_ad::Dual;
 use anysl_rsl::ir::{Const, Module};
 use anysl_simd::{F32x16, F32x4, F32x8};
@@ -121,17 +121,15 @@ impl Variant {
         }
     }
 
-    fn rt_table(self) -> [usize; 5] {
-        fn t<F: JitFloat>() -> [usize; 5] {
-            rt::rt_table::<F>().map(|f| f as usize)
-        }
+    /// Where compiled code of this variant calls for a runtime function ([`rt::rt_addr`]).
+    fn rt_resolver(self) -> fn(rt::RtKind, u32) -> usize {
         match self {
-            Self::F32 => t::<f32>(),
-            Self::X4 => t::<F32x4>(),
-            Self::X8 => t::<F32x8>(),
-            Self::X16 => t::<F32x16>(),
-            Self::DualF32 => t::<Dual<f32>>(),
-            Self::DualX8 => t::<Dual<F32x8>>(),
+            Self::F32 => rt::rt_addr::<f32>,
+            Self::X4 => rt::rt_addr::<F32x4>,
+            Self::X8 => rt::rt_addr::<F32x8>,
+            Self::X16 => rt::rt_addr::<F32x16>,
+            Self::DualF32 => rt::rt_addr::<Dual<f32>>,
+            Self::DualX8 => rt::rt_addr::<Dual<F32x8>>,
         }
     }
 }
@@ -327,7 +325,7 @@ pub fn compile_with(
         inline_noise: opts.inline_noise,
         runtime_params: !opts.specialize,
     };
-    let mut cg = Cg::new(cref, &m.func, target, variant.rt_table(), Variant::F32.rt_table());
+    let mut cg = Cg::new(cref, &m.func, target, variant.rt_resolver(), Variant::F32.rt_resolver());
     let (cpu, features) = if opts.host_cpu {
         (TargetMachine::get_host_cpu_name().to_string(), TargetMachine::get_host_cpu_features().to_string())
     } else {

@@ -182,6 +182,22 @@ pub const SPLINE_BASES: [&str; 6] = ["catmull-rom", "bezier", "bspline", "hermit
 
 /// Unary math, component-wise on one value.
 pub unsafe extern "C" fn rt_un<F: JitFloat>(_: *mut c_void, _: *const u32, inp: *const f32, out: *mut f32, aux: u32) {
+    un_op::<F>(inp, out, aux);
+}
+
+/// [`rt_un`] for one `aux` known when the shader is compiled.
+unsafe extern "C" fn rt_un_k<F: JitFloat, const AUX: u32>(
+    _: *mut c_void,
+    _: *const u32,
+    inp: *const f32,
+    out: *mut f32,
+    _: u32,
+) {
+    un_op::<F>(inp, out, AUX);
+}
+
+#[inline(always)]
+unsafe fn un_op<F: JitFloat>(inp: *const f32, out: *mut f32, aux: u32) {
     let x = In::<F>::new(inp).f();
     let r = match aux {
         un::SIN => x.sin(),
@@ -207,6 +223,22 @@ pub unsafe extern "C" fn rt_un<F: JitFloat>(_: *mut c_void, _: *const u32, inp: 
 
 /// Binary and ternary math on floats.
 pub unsafe extern "C" fn rt_bin<F: JitFloat>(_: *mut c_void, _: *const u32, inp: *const f32, out: *mut f32, aux: u32) {
+    bin_op::<F>(inp, out, aux);
+}
+
+/// [`rt_bin`] for one `aux` known when the shader is compiled.
+unsafe extern "C" fn rt_bin_k<F: JitFloat, const AUX: u32>(
+    _: *mut c_void,
+    _: *const u32,
+    inp: *const f32,
+    out: *mut f32,
+    _: u32,
+) {
+    bin_op::<F>(inp, out, AUX);
+}
+
+#[inline(always)]
+unsafe fn bin_op<F: JitFloat>(inp: *const f32, out: *mut f32, aux: u32) {
     let mut i = In::<F>::new(inp);
     let a = i.f();
     let b = i.f();
@@ -236,6 +268,22 @@ pub unsafe extern "C" fn rt_bin<F: JitFloat>(_: *mut c_void, _: *const u32, inp:
 
 /// Geometry, matrices and colour spaces.
 pub unsafe extern "C" fn rt_geo<F: JitFloat>(_: *mut c_void, _: *const u32, inp: *const f32, out: *mut f32, aux: u32) {
+    geo_op::<F>(inp, out, aux);
+}
+
+/// [`rt_geo`] for one `aux` known when the shader is compiled.
+unsafe extern "C" fn rt_geo_k<F: JitFloat, const AUX: u32>(
+    _: *mut c_void,
+    _: *const u32,
+    inp: *const f32,
+    out: *mut f32,
+    _: u32,
+) {
+    geo_op::<F>(inp, out, AUX);
+}
+
+#[inline(always)]
+unsafe fn geo_op<F: JitFloat>(inp: *const f32, out: *mut f32, aux: u32) {
     let mut i = In::<F>::new(inp);
     let mut o = Out::<F>::new(out);
     match aux & 0xff {
@@ -349,6 +397,22 @@ pub unsafe extern "C" fn rt_noise<F: JitFloat>(
     out: *mut f32,
     aux: u32,
 ) {
+    noise_op::<F>(inp, out, aux);
+}
+
+/// [`rt_noise`] for one `aux` known when the shader is compiled.
+unsafe extern "C" fn rt_noise_k<F: JitFloat, const AUX: u32>(
+    _: *mut c_void,
+    _: *const u32,
+    inp: *const f32,
+    out: *mut f32,
+    _: u32,
+) {
+    noise_op::<F>(inp, out, AUX);
+}
+
+#[inline(always)]
+unsafe fn noise_op<F: JitFloat>(inp: *const f32, out: *mut f32, aux: u32) {
     let mut i = In::<F>::new(inp);
     let mut o = Out::<F>::new(out);
     let kind = aux & 0xf;
@@ -400,14 +464,38 @@ pub unsafe extern "C" fn rt_spline<F: JitFloat>(
     out: *mut f32,
     aux: u32,
 ) {
+    spline_op::<F>(inp, out, aux, aux >> 8);
+}
+
+/// [`rt_spline`] with basis and width (`aux >> 8`) known when the shader is compiled; the
+/// number of knots still comes from `aux`.
+unsafe extern "C" fn rt_spline_k<F: JitFloat, const BW: u32>(
+    _: *mut c_void,
+    _: *const u32,
+    inp: *const f32,
+    out: *mut f32,
+    aux: u32,
+) {
+    spline_op::<F>(inp, out, aux, BW);
+}
+
+/// The bases of [`SPLINE_BASES`], by index.
+const BASES: [SplineBasis; 6] = [
+    SplineBasis::CATMULL_ROM,
+    SplineBasis::BEZIER,
+    SplineBasis::BSPLINE,
+    SplineBasis::HERMITE,
+    SplineBasis::POWER,
+    SplineBasis::LINEAR,
+];
+
+#[inline(always)]
+unsafe fn spline_op<F: JitFloat>(inp: *const f32, out: *mut f32, aux: u32, bw: u32) {
     let mut i = In::<F>::new(inp);
     let mut o = Out::<F>::new(out);
     let n = (aux & 0xff) as usize;
-    let b = SPLINE_BASES
-        .get(((aux >> 8) & 0xff) as usize)
-        .and_then(|s| SplineBasis::from_name(s))
-        .unwrap_or(SplineBasis::CATMULL_ROM);
-    let w = (aux >> 16) & 0xff;
+    let b = BASES.get((bw & 0xff) as usize).copied().unwrap_or(SplineBasis::CATMULL_ROM);
+    let w = (bw >> 8) & 0xff;
     let x = i.f();
     // The knots are read into uninitialized stack space: zeroing 64 colour knots (6 KiB at
     // 8 lanes) per call cost more than the spline itself.
@@ -558,7 +646,7 @@ unsafe extern "C" fn host_specular<F: ShadingFloat, C: ShadingContext<F>, G: Jit
     mask: *const u32,
     inp: *const f32,
     out: *mut f32,
-    _: u32,
+    aux: u32,
 ) {
     let hc = &mut *ctx.cast::<HostCtx<F, C>>();
     let m = cast::<G::Mask, F::Mask>(G::read_mask(mask));
@@ -566,7 +654,15 @@ unsafe extern "C" fn host_specular<F: ShadingFloat, C: ShadingContext<F>, G: Jit
     let (n, v, r) = (i.v3(), i.v3(), i.f());
     let (d, sp) = diffuse_specular(hc.ctx, &mut Exec::with_mask(m), n, v, r);
     hc.lit = Some((n, m, d));
-    HOut::<F, G>::new(out).c3(sp);
+    let mut o = HOut::<F, G>::new(out);
+    o.c3(sp);
+    // `aux` 1: also `diffuse(N)`; 2: and `ambient()` (the code generator keeps them).
+    if aux >= 1 {
+        o.c3(d);
+    }
+    if aux >= 2 {
+        o.c3(hc.ctx.ambient(&Exec::with_mask(m)));
+    }
 }
 
 unsafe extern "C" fn host_phong<F: ShadingFloat, C: ShadingContext<F>, G: JitFloat>(
@@ -741,6 +837,97 @@ pub fn rt_table<F: JitFloat>() -> [RtFn; 5] {
     [rt_un::<F>, rt_bin::<F>, rt_geo::<F>, rt_noise::<F>, rt_spline::<F>]
 }
 
+/// The runtime function for a call of `kind` with `aux`, as an address: for the `aux`
+/// values shaders use, a copy of the function compiled for that one `aux` (no dispatch on
+/// it at run time, and only that variant's stack frame); for the rest, the general function
+/// of [`rt_table`].
+#[must_use]
+pub fn rt_addr<F: JitFloat>(kind: RtKind, aux: u32) -> usize {
+    // `k!(f, [c…])` returns `f::<F, c>` when `aux == c`.
+    macro_rules! k {
+        ($f:ident, $a:expr, [$($c:expr),* $(,)?]) => {
+            { $( if $a == $c { return $f::<F, { $c }> as RtFn as usize; } )* }
+        };
+    }
+    // Noise of one kind over 1–4 dimensions, float or triple.
+    macro_rules! noise {
+        ($kind:expr) => {
+            k!(
+                rt_noise_k,
+                aux,
+                [
+                    $kind | 1 << 4 | 1 << 8,
+                    $kind | 2 << 4 | 1 << 8,
+                    $kind | 3 << 4 | 1 << 8,
+                    $kind | 4 << 4 | 1 << 8,
+                    $kind | 1 << 4 | 3 << 8,
+                    $kind | 2 << 4 | 3 << 8,
+                    $kind | 3 << 4 | 3 << 8,
+                    $kind | 4 << 4 | 3 << 8,
+                ]
+            )
+        };
+    }
+    // fBm or turbulence over 1 or 3 dimensions with 0–3 of its optional arguments.
+    macro_rules! fractal {
+        ($kind:expr) => {
+            k!(
+                rt_noise_k,
+                aux,
+                [
+                    $kind | 1 << 4 | 1 << 8,
+                    $kind | 1 << 4 | 1 << 8 | 1 << 12,
+                    $kind | 1 << 4 | 1 << 8 | 2 << 12,
+                    $kind | 1 << 4 | 1 << 8 | 3 << 12,
+                    $kind | 3 << 4 | 1 << 8,
+                    $kind | 3 << 4 | 1 << 8 | 1 << 12,
+                    $kind | 3 << 4 | 1 << 8 | 2 << 12,
+                    $kind | 3 << 4 | 1 << 8 | 3 << 12,
+                ]
+            )
+        };
+    }
+    #[allow(clippy::identity_op)]
+    match kind {
+        RtKind::Un => k!(rt_un_k, aux, [0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17]),
+        RtKind::Bin => k!(rt_bin_k, aux, [0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11]),
+        RtKind::Geo => {
+            k!(rt_geo_k, aux, [0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19, 20, 21, 22]);
+        }
+        RtKind::Noise => {
+            noise!(nkind::NOISE);
+            noise!(nkind::SNOISE);
+            noise!(nkind::CELL);
+            noise!(nkind::PNOISE);
+            noise!(nkind::PSNOISE);
+            fractal!(nkind::FBM);
+            fractal!(nkind::TURBULENCE);
+        }
+        RtKind::Spline => {
+            let bw = aux >> 8;
+            k!(
+                rt_spline_k,
+                bw,
+                [
+                    0 | 1 << 8,
+                    1 | 1 << 8,
+                    2 | 1 << 8,
+                    3 | 1 << 8,
+                    4 | 1 << 8,
+                    5 | 1 << 8,
+                    0 | 3 << 8,
+                    1 | 3 << 8,
+                    2 | 3 << 8,
+                    3 | 3 << 8,
+                    4 | 3 << 8,
+                    5 | 3 << 8,
+                ]
+            );
+        }
+    }
+    rt_table::<F>()[kind as usize] as usize
+}
+
 /// Which runtime function (index into [`rt_table`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum RtKind {
@@ -754,4 +941,65 @@ pub enum RtKind {
     Noise = 3,
     /// [`rt_spline`]
     Spline = 4,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn spline_bases_by_index_are_the_named_ones() {
+        for (i, name) in SPLINE_BASES.iter().enumerate() {
+            assert_eq!(Some(BASES[i]), SplineBasis::from_name(name), "{name}");
+        }
+    }
+
+    #[test]
+    fn specialized_runtime_functions_compute_what_the_general_ones_do() {
+        // Every specialized (kind, aux) against the general function on the same input.
+        let inp: Vec<f32> = (0..64).map(|k| 0.37 + 0.61 * k as f32).collect();
+        let mut cases: Vec<(RtKind, u32)> = Vec::new();
+        cases.extend((0..18).map(|a| (RtKind::Un, a)));
+        cases.extend((0..12).map(|a| (RtKind::Bin, a)));
+        cases.extend((0..23).filter(|&a| a != geo::CTRANSFORM).map(|a| (RtKind::Geo, a)));
+        for kind in [nkind::NOISE, nkind::SNOISE, nkind::CELL, nkind::PNOISE, nkind::PSNOISE] {
+            for dims in 1..=4 {
+                for w in [1, 3] {
+                    cases.push((RtKind::Noise, kind | dims << 4 | w << 8));
+                }
+            }
+        }
+        for kind in [nkind::FBM, nkind::TURBULENCE] {
+            for dims in [1, 3] {
+                cases.push((RtKind::Noise, kind | dims << 4 | 1 << 8 | 2 << 12));
+            }
+        }
+        for b in 0..6 {
+            for w in [1, 3] {
+                cases.push((RtKind::Spline, 5 | b << 8 | w << 16));
+            }
+        }
+        let mut specialized = 0;
+        for (kind, aux) in cases {
+            let general = rt_table::<f32>()[kind as usize];
+            let addr = rt_addr::<f32>(kind, aux);
+            if addr != general as usize {
+                specialized += 1;
+            }
+            // SAFETY: `addr` is an `RtFn` (it comes from `rt_addr`).
+            let f: RtFn = unsafe { core::mem::transmute::<usize, RtFn>(addr) };
+            let (mut a, mut b) = ([0f32; 16], [0f32; 16]);
+            unsafe {
+                general(core::ptr::null_mut(), core::ptr::null(), inp.as_ptr(), a.as_mut_ptr(), aux);
+                f(core::ptr::null_mut(), core::ptr::null(), inp.as_ptr(), b.as_mut_ptr(), aux);
+            }
+            assert_eq!(a.map(f32::to_bits), b.map(f32::to_bits), "{kind:?} aux {aux:#x}");
+        }
+        assert!(specialized > 100, "only {specialized} calls have their own function");
+        // A call without a specialized copy gets the general function.
+        assert_eq!(
+            rt_addr::<f32>(RtKind::Geo, geo::CTRANSFORM | 1 << 8),
+            rt_table::<f32>()[RtKind::Geo as usize] as usize
+        );
+    }
 }

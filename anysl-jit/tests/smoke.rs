@@ -185,3 +185,54 @@ fn unspecialized_code_reads_parameters_at_run_time() {
         assert!(max_diff(&before, &after) > 1e-3, "{name}: new parameters changed nothing");
     }
 }
+
+/// `specular` keeps its light loop's `diffuse(N)` and `ambient()` sums for the calls after it
+/// (`LitMemo` in the code generator); they are taken only for the same normal and mask. Cases
+/// where they must not be: another normal, a normal reassigned in between, a `specular`
+/// under a varying condition, and a `diffuse` before any `specular`.
+#[test]
+fn kept_light_sums_are_used_only_where_they_apply() {
+    let src = r#"
+surface litmemo(float Ks = 0.5; float roughness = 0.2;)
+{
+    normal Nf = faceforward(normalize(N), I);
+    vector V = -normalize(I);
+    color early = diffuse(Nf);
+    color a = 0, b = 0;
+    if (s < 0.5)
+        a = specular(Nf, V, roughness);
+    color d1 = diffuse(Nf);
+    color amb = ambient();
+    normal Nt = normalize(Nf + vector(0.3, -0.2, 0.1));
+    color sp2 = specular(Nt, V, roughness);
+    color d2 = diffuse(Nf);
+    color d3 = diffuse(Nt);
+    Nt = normalize(Nt + vector(t, 0, 0));
+    color d4 = diffuse(Nt);
+    Ci = early + a + 2 * d1 + 3 * amb + 5 * sp2 + 7 * d2 + 11 * d3 + 13 * d4;
+    Oi = 1;
+}
+"#;
+    let path = std::env::temp_dir().join(format!("anysl_litmemo_{}.sl", std::process::id()));
+    std::fs::write(&path, src).unwrap();
+    let jit = JitShader::from_file(&path, &[], JitOptions::default()).unwrap();
+    let set = PointSet::random(512, 3);
+    assert!(check::<f32>("litmemo", &jit, &set) < 1e-4, "f32");
+    assert!(check::<F32x8>("litmemo", &jit, &set) < 1e-4, "x8");
+    assert!(check::<Dual<f32>>("litmemo", &jit, &set) < 1e-4, "dual");
+    let _ = std::fs::remove_file(&path);
+}
+
+/// In the plastic illumination model (`ambient() + diffuse(Nf) + specular(Nf, V, r)`) the
+/// kept sums fold: one call into the renderer remains, the fused light loop.
+#[test]
+fn plastic_calls_the_renderer_once() {
+    let path = rsl_dir().join("plastic.sl");
+    let jit = JitShader::from_file(&path, &[rsl_dir().join("include")], JitOptions::default()).unwrap();
+    for v in [Variant::F32, Variant::X8] {
+        let cs = anysl_jit::compile_with(&jit.module, &jit.values, v, &jit.opts, true).unwrap();
+        let ir = cs.llvm_ir.unwrap();
+        let calls = ir.lines().filter(|l| l.trim_start().starts_with("call void %")).count();
+        assert_eq!(calls, 1, "{v:?}: {calls} indirect calls in\n{ir}");
+    }
+}
