@@ -2753,7 +2753,9 @@ impl<'c> Cg<'c, '_> {
                 };
                 let coords = flat_args(self, 0..n)?;
                 debug_assert_eq!(coords.len(), dims as usize);
-                if self.t.inline_noise {
+                // cellnoise is a hash of the cell: a few integer ops inline, where a call
+                // would spill every live vector register; Perlin noise is inline on request.
+                if self.t.inline_noise || kind == noise::NoiseKind::Cell {
                     Val::Num(self.noise_inline(kind, &coords, rw))
                 } else {
                     let k = match kind {
