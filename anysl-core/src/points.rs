@@ -76,7 +76,7 @@ impl PointSet {
     pub fn random(n: usize, seed: u64) -> Self {
         let n = n.div_ceil(16) * 16;
         let mut rng = SplitMix64(seed);
-        let mut data: Vec<Vec<f32>> = vec![Vec::with_capacity(n); FIELDS];
+        let mut data: Vec<Vec<f32>> = (0..FIELDS).map(|_| Vec::with_capacity(n)).collect();
         let eye = [0.0, 0.0, 3.0];
         for _ in 0..n {
             // Uniform on the visible cap z > 1/3 (points whose normal faces the eye).

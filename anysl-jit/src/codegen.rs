@@ -906,9 +906,9 @@ impl<'c, 'm> Cg<'c, 'm> {
         let e = all_eq(self, m.v, mm);
         hit = self.b.build_and(hit, e, "").expect("and");
         if let Some(n) = n {
-            for c in 0..3 {
-                let v = self.to(n[c], Repr::V).v;
-                let kept = self.b.build_load(memo.n[c], "").expect("load");
+            for (&nc, &slot) in n.iter().zip(&memo.n) {
+                let v = self.to(nc, Repr::V).v;
+                let kept = self.b.build_load(slot, "").expect("load");
                 let e = all_eq(self, v, kept);
                 hit = self.b.build_and(hit, e, "").expect("and");
             }

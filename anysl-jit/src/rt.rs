@@ -181,6 +181,10 @@ pub const COLOR_SPACES: [&str; 6] = ["rgb", "hsv", "hsl", "xyz", "xyY", "YIQ"];
 pub const SPLINE_BASES: [&str; 6] = ["catmull-rom", "bezier", "bspline", "hermite", "power", "linear"];
 
 /// Unary math, component-wise on one value.
+///
+/// # Safety
+/// `inp` holds the arguments and `out` has room for the results that `aux` selects, as
+/// consecutive `F` values (`F::STRIDE` floats each); the context and mask are not read.
 pub unsafe extern "C" fn rt_un<F: JitFloat>(_: *mut c_void, _: *const u32, inp: *const f32, out: *mut f32, aux: u32) {
     un_op::<F>(inp, out, aux);
 }
@@ -222,6 +226,10 @@ unsafe fn un_op<F: JitFloat>(inp: *const f32, out: *mut f32, aux: u32) {
 }
 
 /// Binary and ternary math on floats.
+///
+/// # Safety
+/// `inp` holds the arguments and `out` has room for the results that `aux` selects, as
+/// consecutive `F` values (`F::STRIDE` floats each); the context and mask are not read.
 pub unsafe extern "C" fn rt_bin<F: JitFloat>(_: *mut c_void, _: *const u32, inp: *const f32, out: *mut f32, aux: u32) {
     bin_op::<F>(inp, out, aux);
 }
@@ -267,6 +275,10 @@ unsafe fn bin_op<F: JitFloat>(inp: *const f32, out: *mut f32, aux: u32) {
 }
 
 /// Geometry, matrices and colour spaces.
+///
+/// # Safety
+/// `inp` holds the arguments and `out` has room for the results that `aux` selects, as
+/// consecutive `F` values (`F::STRIDE` floats each); the context and mask are not read.
 pub unsafe extern "C" fn rt_geo<F: JitFloat>(_: *mut c_void, _: *const u32, inp: *const f32, out: *mut f32, aux: u32) {
     geo_op::<F>(inp, out, aux);
 }
@@ -390,6 +402,10 @@ unsafe fn domain<F: JitFloat>(i: &mut In<F>, dims: u32) -> NoiseDomain<F> {
 }
 
 /// The noise family, fBm and turbulence.
+///
+/// # Safety
+/// `inp` holds the arguments and `out` has room for the results that `aux` selects, as
+/// consecutive `F` values (`F::STRIDE` floats each); the context and mask are not read.
 pub unsafe extern "C" fn rt_noise<F: JitFloat>(
     _: *mut c_void,
     _: *const u32,
@@ -457,6 +473,10 @@ unsafe fn noise_op<F: JitFloat>(inp: *const f32, out: *mut f32, aux: u32) {
 }
 
 /// `spline([basis,] x, knots…)`: `aux = n | basis << 8 | w << 16`.
+///
+/// # Safety
+/// `inp` holds the arguments and `out` has room for the results that `aux` selects, as
+/// consecutive `F` values (`F::STRIDE` floats each); the context and mask are not read.
 pub unsafe extern "C" fn rt_spline<F: JitFloat>(
     _: *mut c_void,
     _: *const u32,
