@@ -22,6 +22,7 @@
 //! counts of each stage.
 
 pub mod abi;
+pub mod check;
 pub mod codegen;
 pub mod rt;
 mod shader;

@@ -180,25 +180,42 @@ pub const COLOR_SPACES: [&str; 6] = ["rgb", "hsv", "hsl", "xyz", "xyY", "YIQ"];
 /// Spline basis names by index (for `aux`).
 pub const SPLINE_BASES: [&str; 6] = ["catmull-rom", "bezier", "bspline", "hermite", "power", "linear"];
 
-/// Unary math, component-wise on one value.
-///
-/// # Safety
-/// `inp` holds the arguments and `out` has room for the results that `aux` selects, as
-/// consecutive `F` values (`F::STRIDE` floats each); the context and mask are not read.
-pub unsafe extern "C" fn rt_un<F: JitFloat>(_: *mut c_void, _: *const u32, inp: *const f32, out: *mut f32, aux: u32) {
-    un_op::<F>(inp, out, aux);
+/// A runtime function family: `$general` reads its selector from `aux`; `$special::<F, AUX>`
+/// is the copy compiled for one selector ([`rt_addr`]); both run `$op`.
+macro_rules! rt_family {
+    ($(#[$doc:meta])* $general:ident, $special:ident, $op:ident) => {
+        $(#[$doc])*
+        ///
+        /// # Safety
+        /// `inp` holds the arguments and `out` has room for the results that `aux` selects, as
+        /// consecutive `F` values (`F::STRIDE` floats each); the context and mask are not read.
+        pub unsafe extern "C" fn $general<F: JitFloat>(
+            _: *mut c_void,
+            _: *const u32,
+            inp: *const f32,
+            out: *mut f32,
+            aux: u32,
+        ) {
+            $op::<F>(inp, out, aux);
+        }
+
+        #[doc = concat!("[`", stringify!($general), "`] for one `aux` known when the shader is compiled.")]
+        unsafe extern "C" fn $special<F: JitFloat, const AUX: u32>(
+            _: *mut c_void,
+            _: *const u32,
+            inp: *const f32,
+            out: *mut f32,
+            _: u32,
+        ) {
+            $op::<F>(inp, out, AUX);
+        }
+    };
 }
 
-/// [`rt_un`] for one `aux` known when the shader is compiled.
-unsafe extern "C" fn rt_un_k<F: JitFloat, const AUX: u32>(
-    _: *mut c_void,
-    _: *const u32,
-    inp: *const f32,
-    out: *mut f32,
-    _: u32,
-) {
-    un_op::<F>(inp, out, AUX);
-}
+rt_family!(
+    /// Unary math, component-wise on one value.
+    rt_un, rt_un_k, un_op
+);
 
 #[inline(always)]
 unsafe fn un_op<F: JitFloat>(inp: *const f32, out: *mut f32, aux: u32) {
@@ -225,25 +242,10 @@ unsafe fn un_op<F: JitFloat>(inp: *const f32, out: *mut f32, aux: u32) {
     Out::<F>::new(out).f(r);
 }
 
-/// Binary and ternary math on floats.
-///
-/// # Safety
-/// `inp` holds the arguments and `out` has room for the results that `aux` selects, as
-/// consecutive `F` values (`F::STRIDE` floats each); the context and mask are not read.
-pub unsafe extern "C" fn rt_bin<F: JitFloat>(_: *mut c_void, _: *const u32, inp: *const f32, out: *mut f32, aux: u32) {
-    bin_op::<F>(inp, out, aux);
-}
-
-/// [`rt_bin`] for one `aux` known when the shader is compiled.
-unsafe extern "C" fn rt_bin_k<F: JitFloat, const AUX: u32>(
-    _: *mut c_void,
-    _: *const u32,
-    inp: *const f32,
-    out: *mut f32,
-    _: u32,
-) {
-    bin_op::<F>(inp, out, AUX);
-}
+rt_family!(
+    /// Binary and ternary math on floats.
+    rt_bin, rt_bin_k, bin_op
+);
 
 #[inline(always)]
 unsafe fn bin_op<F: JitFloat>(inp: *const f32, out: *mut f32, aux: u32) {
@@ -274,25 +276,10 @@ unsafe fn bin_op<F: JitFloat>(inp: *const f32, out: *mut f32, aux: u32) {
     Out::<F>::new(out).f(r);
 }
 
-/// Geometry, matrices and colour spaces.
-///
-/// # Safety
-/// `inp` holds the arguments and `out` has room for the results that `aux` selects, as
-/// consecutive `F` values (`F::STRIDE` floats each); the context and mask are not read.
-pub unsafe extern "C" fn rt_geo<F: JitFloat>(_: *mut c_void, _: *const u32, inp: *const f32, out: *mut f32, aux: u32) {
-    geo_op::<F>(inp, out, aux);
-}
-
-/// [`rt_geo`] for one `aux` known when the shader is compiled.
-unsafe extern "C" fn rt_geo_k<F: JitFloat, const AUX: u32>(
-    _: *mut c_void,
-    _: *const u32,
-    inp: *const f32,
-    out: *mut f32,
-    _: u32,
-) {
-    geo_op::<F>(inp, out, AUX);
-}
+rt_family!(
+    /// Geometry, matrices and colour spaces.
+    rt_geo, rt_geo_k, geo_op
+);
 
 #[inline(always)]
 unsafe fn geo_op<F: JitFloat>(inp: *const f32, out: *mut f32, aux: u32) {
@@ -401,31 +388,10 @@ unsafe fn domain<F: JitFloat>(i: &mut In<F>, dims: u32) -> NoiseDomain<F> {
     }
 }
 
-/// The noise family, fBm and turbulence.
-///
-/// # Safety
-/// `inp` holds the arguments and `out` has room for the results that `aux` selects, as
-/// consecutive `F` values (`F::STRIDE` floats each); the context and mask are not read.
-pub unsafe extern "C" fn rt_noise<F: JitFloat>(
-    _: *mut c_void,
-    _: *const u32,
-    inp: *const f32,
-    out: *mut f32,
-    aux: u32,
-) {
-    noise_op::<F>(inp, out, aux);
-}
-
-/// [`rt_noise`] for one `aux` known when the shader is compiled.
-unsafe extern "C" fn rt_noise_k<F: JitFloat, const AUX: u32>(
-    _: *mut c_void,
-    _: *const u32,
-    inp: *const f32,
-    out: *mut f32,
-    _: u32,
-) {
-    noise_op::<F>(inp, out, AUX);
-}
+rt_family!(
+    /// The noise family, fBm and turbulence.
+    rt_noise, rt_noise_k, noise_op
+);
 
 #[inline(always)]
 unsafe fn noise_op<F: JitFloat>(inp: *const f32, out: *mut f32, aux: u32) {

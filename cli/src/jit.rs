@@ -2,6 +2,7 @@
 
 use anysl_ad::Dual;
 use anysl_core::points::{abs_error_stats, shade_points, shade_points_f64, PointSet, ShadeOut};
+use anysl_jit::check::{ABS_FLOOR, MAX_ULPS};
 use anysl_jit::{compile_with, ir_passes, CompileStats, JitOptions, JitShader, Variant};
 use anysl_rsl::back::interp::{InterpShader, Program};
 use anysl_rsl::ir::ShaderKind;
@@ -37,21 +38,6 @@ pub fn aot_for(stem: &str) -> Option<Surface> {
     Surface::by_name(if stem == "plastic" { "phong" } else { stem })
 }
 
-/// Distance in units in the last place between two f32s (NaN vs anything: infinite).
-fn ulps(a: f32, b: f32) -> u64 {
-    if a == b {
-        return 0;
-    }
-    if a.is_nan() || b.is_nan() {
-        return u64::MAX;
-    }
-    let key = |x: f32| {
-        let i = x.to_bits() as i32;
-        i64::from(if i < 0 { i32::MIN - i } else { i })
-    };
-    (key(a) - key(b)).unsigned_abs()
-}
-
 /// Result of one comparison.
 #[derive(Clone, Debug, Serialize)]
 pub struct CheckRow {
@@ -69,30 +55,6 @@ pub struct CheckRow {
     pub mismatches: usize,
     /// Compilation error or note.
     pub note: String,
-}
-
-/// The bound: more than 4 ulps apart *and* more than `ABS_FLOOR · max(1, |x|)` (values
-/// near zero after cancellation, and transcendentals of the SIMD polynomials, differ in
-/// ulps without differing in value).
-pub const ABS_FLOOR: f64 = 2e-6;
-
-fn compare(a: &ShadeOut<f32>, b: &ShadeOut<f32>) -> (u64, f64, usize) {
-    let (mut mu, mut ma, mut bad) = (0u64, 0.0f64, 0usize);
-    for c in 0..6 {
-        for (x, y) in a.channels[c].iter().zip(&b.channels[c]) {
-            let u = ulps(*x, *y);
-            let d = f64::from((x - y).abs());
-            mu = mu.max(u);
-            if d.is_finite() {
-                ma = ma.max(d);
-            }
-            let scale = f64::from(x.abs().max(y.abs())).max(1.0);
-            if u > 4 && !(d <= ABS_FLOOR * scale) {
-                bad += 1;
-            }
-        }
-    }
-    (mu, ma, bad)
 }
 
 /// Checks one `.sl` file: JIT f32 / x8 / dual-f32 against the monomorphized shader at the
@@ -140,7 +102,8 @@ pub fn check_file(file: &Path, n: usize) -> Vec<CheckRow> {
                         Some(s) => shade_points::<$F, Surface, Light>(s, &lights, &set, &mut b),
                         None => shade_points::<$F, InterpShader, Light>(jit.interp(), &lights, &set, &mut b),
                     }
-                    let (mu, ma, bad) = compare(&a, &b);
+                    let anysl_jit::check::Comparison { max_ulps: mu, max_abs: ma, mismatches: bad } =
+                        anysl_jit::check::compare(&a, &b);
                     let mut r = row($label, oracle_name, String::new());
                     r.max_ulps = mu;
                     r.max_abs = ma;
@@ -203,7 +166,7 @@ pub fn check(files: &[PathBuf], points: usize, verbose: bool) -> bool {
         }
     }
     println!(
-        "{} files, {n_pairs} comparisons on {points} points each, {n_bad} failing; bound: > 4 ulps and > {ABS_FLOOR:e}·max(1,|x|)",
+        "{} files, {n_pairs} comparisons on {points} points each, {n_bad} failing; bound: > {MAX_ULPS} ulps and > {ABS_FLOOR:e}·max(1,|x|)",
         files.len()
     );
     ok

@@ -20,34 +20,9 @@ fn root() -> PathBuf {
     PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
 }
 
-fn ulps(a: f32, b: f32) -> u64 {
-    if a == b {
-        return 0;
-    }
-    if a.is_nan() || b.is_nan() {
-        return u64::MAX;
-    }
-    let key = |x: f32| {
-        let i = x.to_bits() as i32;
-        i64::from(if i < 0 { i32::MIN - i } else { i })
-    };
-    (key(a) - key(b)).unsigned_abs()
-}
-
 fn mismatches(a: &ShadeOut<f32>, b: &ShadeOut<f32>) -> (usize, u64) {
-    let (mut bad, mut worst) = (0, 0);
-    for c in 0..6 {
-        for (x, y) in a.channels[c].iter().zip(&b.channels[c]) {
-            let u = ulps(*x, *y);
-            worst = worst.max(u);
-            let d = f64::from((x - y).abs());
-            let scale = f64::from(x.abs().max(y.abs())).max(1.0);
-            if u > 4 && !(d <= 2e-6 * scale) {
-                bad += 1;
-            }
-        }
-    }
-    (bad, worst)
+    let c = anysl_jit::check::compare(a, b);
+    (c.mismatches, c.max_ulps)
 }
 
 fn pair<F: ShadingFloat>(jit: &JitShader, aot: Option<&Surface>, set: &PointSet, lights: &[Light]) -> (usize, u64) {

@@ -1,0 +1,90 @@
+//! The cross-check's comparison of two shadings (`anysl jit check` and its test): outputs
+//! more than [`MAX_ULPS`] apart *and* more than [`ABS_FLOOR`]`· max(1, |x|)` apart are
+//! mismatches (values near zero after cancellation, and the SIMD polynomial
+//! transcendentals, differ in ulps without differing in value).
+
+use anysl_core::points::ShadeOut;
+
+/// Ulps two outputs may differ by.
+pub const MAX_ULPS: u64 = 4;
+/// The absolute floor, relative to `max(1, |x|)`, under which more ulps are still a match.
+pub const ABS_FLOOR: f64 = 2e-6;
+
+/// Distance in units in the last place between two f32s (NaN against anything: infinite).
+#[must_use]
+pub fn ulps(a: f32, b: f32) -> u64 {
+    if a == b {
+        return 0;
+    }
+    if a.is_nan() || b.is_nan() {
+        return u64::MAX;
+    }
+    let key = |x: f32| {
+        let i = x.to_bits() as i32;
+        i64::from(if i < 0 { i32::MIN - i } else { i })
+    };
+    (key(a) - key(b)).unsigned_abs()
+}
+
+/// How two shadings of the same points compare.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Comparison {
+    /// Max ulps over all outputs.
+    pub max_ulps: u64,
+    /// Max finite absolute difference.
+    pub max_abs: f64,
+    /// Outputs beyond the bound.
+    pub mismatches: usize,
+}
+
+/// Compares every output (Ci and Oi) of `a` and `b`.
+#[must_use]
+pub fn compare(a: &ShadeOut<f32>, b: &ShadeOut<f32>) -> Comparison {
+    let mut r = Comparison::default();
+    for (ca, cb) in a.channels.iter().zip(&b.channels) {
+        for (x, y) in ca.iter().zip(cb) {
+            let u = ulps(*x, *y);
+            let d = f64::from((x - y).abs());
+            r.max_ulps = r.max_ulps.max(u);
+            if d.is_finite() {
+                r.max_abs = r.max_abs.max(d);
+            }
+            let scale = f64::from(x.abs().max(y.abs())).max(1.0);
+            if u > MAX_ULPS && !(d <= ABS_FLOOR * scale) {
+                r.mismatches += 1;
+            }
+        }
+    }
+    r
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ulps_across_zero_and_nan() {
+        assert_eq!(ulps(1.0, 1.0), 0);
+        assert_eq!(ulps(1.0, f32::from_bits(1.0f32.to_bits() + 3)), 3);
+        assert_eq!(ulps(-0.0, 0.0), 0);
+        assert_eq!(ulps(f32::from_bits(1), -f32::from_bits(1)), 2);
+        assert_eq!(ulps(f32::NAN, 1.0), u64::MAX);
+    }
+
+    #[test]
+    fn mismatch_needs_both_ulps_and_absolute_distance() {
+        let mut a = ShadeOut::new(2);
+        let mut b = ShadeOut::new(2);
+        // Near zero: many ulps, tiny value difference: a match.
+        a.channels[0][0] = 1e-9;
+        b.channels[0][0] = 2e-9;
+        // At 1: 5 ulps (6e-7) is under the floor: a match; 0.5 is not.
+        a.channels[1][0] = 1.0;
+        b.channels[1][0] = f32::from_bits(1.0f32.to_bits() + 5);
+        a.channels[2][1] = 1.0;
+        b.channels[2][1] = 1.5;
+        let c = compare(&a, &b);
+        assert_eq!(c.mismatches, 1);
+        assert!((c.max_abs - 0.5).abs() < 1e-12);
+    }
+}
