@@ -151,7 +151,7 @@ pub struct Cg<'c, 'm> {
     pub threaded_fns: usize,
     /// Where the globals lie in the renderer's `Globals` struct.
     pub layout: abi::GlobalsLayout,
-    /// The light sums of the last `specular` call ([`Cg::specular`]).
+    /// The light sums of the last `specular` call ([`Cg::lit_call`]).
     lit: Option<LitMemo<'c>>,
 }
 
