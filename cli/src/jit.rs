@@ -138,11 +138,15 @@ pub fn default_files() -> Vec<PathBuf> {
 pub fn check(files: &[PathBuf], points: usize, verbose: bool) -> bool {
     let files = if files.is_empty() { default_files() } else { files.to_vec() };
     let mut ok = true;
-    let (mut n_pairs, mut n_bad, mut worst) = (0usize, 0usize, 0u64);
+    let (mut n_pairs, mut n_bad, mut n_fallback, mut worst) = (0usize, 0usize, 0usize, 0u64);
     println!("{:<28} {:<22} {:<7} {:>10} {:>10} {:>6}  note", "shader", "pair", "oracle", "max ulps", "max abs", "bad");
     for f in &files {
         for r in check_file(f, points) {
-            let failed = r.mismatches > 0 || (r.pair != "-" && !r.note.is_empty());
+            // Built-ins the JIT does not compile (`format` with numbers, textures) run on the
+            // interpreter, as documented: reported, not a failure (as in the test).
+            let fallback = r.pair != "-" && r.note.contains("not supported by the JIT");
+            n_fallback += usize::from(fallback);
+            let failed = r.mismatches > 0 || (r.pair != "-" && !r.note.is_empty() && !fallback);
             if r.pair != "-" && r.note.is_empty() {
                 n_pairs += 1;
                 worst = worst.max(r.max_ulps);
@@ -166,7 +170,7 @@ pub fn check(files: &[PathBuf], points: usize, verbose: bool) -> bool {
         }
     }
     println!(
-        "{} files, {n_pairs} comparisons on {points} points each, {n_bad} failing; bound: > {MAX_ULPS} ulps and > {ABS_FLOOR:e}·max(1,|x|)",
+        "{} files, {n_pairs} comparisons on {points} points each, {n_bad} failing, {n_fallback} on the interpreter; bound: > {MAX_ULPS} ulps and > {ABS_FLOOR:e}·max(1,|x|)",
         files.len()
     );
     ok
