@@ -153,6 +153,77 @@ pub struct Cg<'c, 'm> {
     pub layout: abi::GlobalsLayout,
     /// The light sums of the last `specular` call ([`Cg::lit_call`]).
     lit: Option<LitMemo<'c>>,
+    /// `ambient()` calls followed by a `diffuse(N)` under the same mask whose normal is
+    /// known at the `ambient()` call ([`ambient_partners`]).
+    amb_partner: HashMap<u32, NormalSrc>,
+}
+
+/// Where the normal of the `diffuse(N)` that follows an `ambient()` call can be read at the
+/// `ambient()` call.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum NormalSrc {
+    /// A variable not written between the two calls.
+    Slot(SlotId),
+    /// A value computed before the `ambient()` call in the same block.
+    Value(Value),
+}
+
+/// For every `ambient()` call followed, in the same block and with only instructions and
+/// stores in between (so under the same mask), by a `diffuse(N)` whose normal can be read at
+/// the `ambient()` call: that normal. Matte-like shaders (`Ka·ambient() + Kd·diffuse(Nf)`)
+/// then visit the lights once for both ([`Cg::lit_call`]).
+fn ambient_partners(func: &Function) -> HashMap<u32, NormalSrc> {
+    fn is_call(func: &Function, v: Value, want: &str, nargs: usize) -> bool {
+        let i = func.inst(v);
+        matches!(&i.op, Op::Call { name, .. } if name == want) && i.args.len() == nargs
+    }
+    fn walk(func: &Function, block: &Block, out: &mut HashMap<u32, NormalSrc>) {
+        for (i, node) in block.iter().enumerate() {
+            match node {
+                Node::Inst(v) if is_call(func, *v, "ambient", 0) => {
+                    let mut stored = Vec::new();
+                    for later in &block[i + 1..] {
+                        match later {
+                            Node::Inst(w) if is_call(func, *w, "diffuse", 1) => {
+                                let a = func.inst(*w).args[0];
+                                let src = match func.inst(a).op {
+                                    Op::Load(s) if !stored.contains(&s) && func.slot(s).ty.array.is_none() => {
+                                        Some(NormalSrc::Slot(s))
+                                    }
+                                    _ if block[..i].contains(&Node::Inst(a)) => Some(NormalSrc::Value(a)),
+                                    _ => None,
+                                };
+                                if let Some(src) = src {
+                                    out.insert(v.0, src);
+                                }
+                                break;
+                            }
+                            Node::Inst(_) => {}
+                            Node::Store { slot, .. } => stored.push(*slot),
+                            _ => break,
+                        }
+                    }
+                }
+                Node::Inst(_) | Node::Store { .. } | Node::Break(_) | Node::Continue(_) | Node::Return => {}
+                Node::If { then, otherwise, .. } => {
+                    walk(func, then, out);
+                    walk(func, otherwise, out);
+                }
+                Node::Loop { header, body, step, .. } => {
+                    walk(func, header, out);
+                    walk(func, body, out);
+                    walk(func, step, out);
+                }
+                Node::Frame(b)
+                | Node::Illuminance { body: b, .. }
+                | Node::Illuminate { body: b, .. }
+                | Node::Solar { body: b, .. } => walk(func, b, out),
+            }
+        }
+    }
+    let mut out = HashMap::new();
+    walk(func, &func.body, &mut out);
+    out
 }
 
 /// What a `specular` call left for the `diffuse` and `ambient` calls after it: its light loop
@@ -201,6 +272,7 @@ impl<'c, 'm> Cg<'c, 'm> {
             rt_u,
             body_count: 0,
             lit: None,
+            amb_partner: ambient_partners(func),
             shapes: HashMap::new(),
             fn_attrs: Vec::new(),
             threaded_fns: 0,
@@ -819,12 +891,40 @@ impl<'c, 'm> Cg<'c, 'm> {
                 let n = if name == "diffuse" { triple(args.first()) } else { None };
                 let memo = match self.lit {
                     Some(m) if m.f == f && (n.is_some() || (name == "ambient" && m.amb.is_some())) => m,
-                    _ => return self.emit_call(v, args),
+                    _ => {
+                        if name == "ambient" {
+                            if let Some(r) = self.ambient_with_diffuse(v) {
+                                return Ok(r);
+                            }
+                        }
+                        return self.emit_call(v, args);
+                    }
                 };
                 self.lit_guarded(memo, n.as_deref(), |cg| cg.emit_call(v, args))
             }
             _ => self.emit_call(v, args),
         }
+    }
+
+    /// `ambient()` call `v` when a `diffuse(N)` follows it under the same mask
+    /// ([`ambient_partners`]): one renderer call returns both sums (`diffuse` with `aux` 1),
+    /// the diffuse sum is kept for the `diffuse(N)` call, which checks its normal and mask as
+    /// after a `specular` ([`Cg::lit_guarded`]). `None`: emit the plain call.
+    fn ambient_with_diffuse(&mut self, v: Value) -> Option<Val<'c>> {
+        if self.t.dual {
+            return None;
+        }
+        let n = match *self.amb_partner.get(&v.0)? {
+            NormalSrc::Slot(s) => self.load_slot(s),
+            NormalSrc::Value(a) => self.vals[a.0 as usize].clone()?,
+        };
+        let n = match n {
+            Val::Num(c) if c.len() == 3 && c.iter().all(|s| s.d.is_none()) => c,
+            _ => return None,
+        };
+        let sums = self.host_call(host::DIFFUSE, 1, &n, 6);
+        self.lit_store(&n, &sums);
+        Some(Val::Num(sums[3..].to_vec()))
     }
 
     /// Keeps the sums `extra` (diffuse, then ambient if present) of a `specular(n, …)` call.

@@ -401,7 +401,29 @@ unsafe fn noise_op<F: JitFloat>(inp: *const f32, out: *mut f32, aux: u32) {
     let dims = (aux >> 4) & 0xf;
     let w = (aux >> 8) & 0xf;
     let d = domain(&mut i, dims);
+    // Up to three dimensions the noise is Perlin's 3D noise; for types without derivatives
+    // its kernel is inlined here (`snoise_inlined`): this function already is the one
+    // compiled copy for its selector, and calling the kernel out of line would add a call
+    // and copies of its arguments. Same values as the library functions.
+    let inlined = !F::DUAL && dims <= 3;
+    let h = F::c(0.5);
     match kind {
+        nkind::NOISE | nkind::SNOISE if inlined => {
+            let signed = kind == nkind::SNOISE;
+            let n = |seed| {
+                let s = snoise_inlined(d, seed);
+                if signed {
+                    s
+                } else {
+                    h + h * s
+                }
+            };
+            if w == 1 {
+                o.f(n(0));
+            } else {
+                o.v3(Vec3::new(n(VECTOR_SEEDS[0]), n(VECTOR_SEEDS[1]), n(VECTOR_SEEDS[2])));
+            }
+        }
         nkind::NOISE | nkind::SNOISE => {
             let signed = kind == nkind::SNOISE;
             if w == 1 {
@@ -433,7 +455,12 @@ unsafe fn noise_op<F: JitFloat>(inp: *const f32, out: *mut f32, aux: u32) {
             let oct = get(0, 6.0).max(0.0) as u32;
             let lac = get(1, 2.0);
             let gain = get(2, 0.5);
-            o.f(if kind == nkind::FBM { fbm(d, oct, lac, gain) } else { turbulence(d, oct, lac, gain) });
+            o.f(match (kind == nkind::FBM, inlined) {
+                (true, true) => octave_sum(d, oct, lac, gain, |d| snoise_inlined(d, 0)),
+                (false, true) => octave_sum(d, oct, lac, gain, |d| snoise_inlined(d, 0).abs()),
+                (true, false) => fbm(d, oct, lac, gain),
+                (false, false) => turbulence(d, oct, lac, gain),
+            });
         }
     }
 }
@@ -615,7 +642,7 @@ unsafe extern "C" fn host_diffuse<F: ShadingFloat, C: ShadingContext<F>, G: JitF
     mask: *const u32,
     inp: *const f32,
     out: *mut f32,
-    _: u32,
+    aux: u32,
 ) {
     let hc = &mut *ctx.cast::<HostCtx<F, C>>();
     let m = cast::<G::Mask, F::Mask>(G::read_mask(mask));
@@ -624,7 +651,12 @@ unsafe extern "C" fn host_diffuse<F: ShadingFloat, C: ShadingContext<F>, G: JitF
         Some((n0, m0, d)) if same(n, n0, m, m0) => d,
         _ => diffuse(hc.ctx, &mut Exec::with_mask(m), n),
     };
-    HOut::<F, G>::new(out).c3(d);
+    let mut o = HOut::<F, G>::new(out);
+    o.c3(d);
+    // `aux` 1: also `ambient()` (an `ambient()` call the code generator fused with this one).
+    if aux >= 1 {
+        o.c3(hc.ctx.ambient(&Exec::with_mask(m)));
+    }
 }
 
 unsafe extern "C" fn host_specular<F: ShadingFloat, C: ShadingContext<F>, G: JitFloat>(
@@ -987,5 +1019,63 @@ mod tests {
             rt_addr::<f32>(RtKind::Geo, geo::CTRANSFORM | 1 << 8),
             rt_table::<f32>()[RtKind::Geo as usize] as usize
         );
+    }
+
+    /// The runtime noise, whose kernel is inlined for types without derivatives, gives the
+    /// library's noise bit for bit (f32 and 8 lanes; 1–3 dimensions; float and vector;
+    /// fBm and turbulence), including non-finite and huge coordinates.
+    #[test]
+    fn inlined_runtime_noise_is_the_library_noise() {
+        fn run<F: JitFloat>(aux: u32, args: &[F], outs: usize) -> Vec<F> {
+            let mut inp = vec![0f32; 8 * F::STRIDE];
+            for (k, a) in args.iter().enumerate() {
+                unsafe { a.write(inp.as_mut_ptr().add(k * F::STRIDE)) };
+            }
+            let mut out = vec![0f32; 3 * F::STRIDE];
+            let f: RtFn = unsafe { core::mem::transmute::<usize, RtFn>(rt_addr::<F>(RtKind::Noise, aux)) };
+            unsafe { f(core::ptr::null_mut(), core::ptr::null(), inp.as_ptr(), out.as_mut_ptr(), aux) };
+            (0..outs).map(|k| unsafe { F::read(out.as_ptr().add(k * F::STRIDE)) }).collect()
+        }
+        fn bits<F: ShadingFloat>(v: &[F]) -> Vec<u64> {
+            v.iter().flat_map(|x| (0..F::LANES).map(|l| x.lane(l).to_bits())).collect()
+        }
+        fn check<F: JitFloat>(x: F, y: F, z: F) {
+            let p = Vec3::new(x, y, z);
+            let doms = [NoiseDomain::D1(x), NoiseDomain::D2(x, y), NoiseDomain::D3(p)];
+            for (k, d) in doms.into_iter().enumerate() {
+                let dims = k as u32 + 1;
+                let args = [x, y, z];
+                let a = &args[..k + 1];
+                let sel = |kind: u32, w: u32| kind | dims << 4 | w << 8;
+                let v3 = |v: Vec3<F>| vec![v.x, v.y, v.z];
+                let cases: [(u32, Vec<F>, Vec<F>); 4] = [
+                    (sel(nkind::SNOISE, 1), run(sel(nkind::SNOISE, 1), a, 1), vec![snoise(d)]),
+                    (sel(nkind::NOISE, 1), run(sel(nkind::NOISE, 1), a, 1), vec![anysl_core::prelude::noise(d)]),
+                    (sel(nkind::SNOISE, 3), run(sel(nkind::SNOISE, 3), a, 3), v3(vsnoise(d))),
+                    (sel(nkind::NOISE, 3), run(sel(nkind::NOISE, 3), a, 3), v3(vnoise(d))),
+                ];
+                for (aux, got, want) in cases {
+                    assert_eq!(bits(&got), bits(&want), "{} aux {aux:#x}", F::NAME);
+                }
+                let mut with_opts = a.to_vec();
+                with_opts.extend([F::c(4.0), F::c(2.5), F::c(0.375)]);
+                for (kind, want) in
+                    [(nkind::FBM, fbm(d, 4, 2.5, 0.375)), (nkind::TURBULENCE, turbulence(d, 4, 2.5, 0.375))]
+                {
+                    let aux = sel(kind, 1) | 3 << 12;
+                    assert_eq!(bits(&run(aux, &with_opts, 1)), bits(&[want]), "{} aux {aux:#x}", F::NAME);
+                }
+            }
+        }
+        let vals = [0.37f32, -5.25, 1.0e7, -3.0e-39, 12.5, f32::NAN, f32::INFINITY, 0.0];
+        for (i, &x) in vals.iter().enumerate() {
+            let (y, z) = (vals[(i + 3) % vals.len()], vals[(i + 5) % vals.len()]);
+            check::<f32>(x, y * 0.7 + 0.1, z * 1.3 - 0.2);
+        }
+        let lanes = |o: usize| {
+            let l: Vec<f64> = (0..8).map(|l| f64::from(vals[(l + o) % vals.len()] * (1.0 + 0.1 * o as f32))).collect();
+            anysl_simd::F32x8::from_lanes(&l)
+        };
+        check::<anysl_simd::F32x8>(lanes(0), lanes(3), lanes(5));
     }
 }

@@ -236,3 +236,59 @@ fn plastic_calls_the_renderer_once() {
         assert_eq!(calls, 1, "{v:?}: {calls} indirect calls in\n{ir}");
     }
 }
+
+/// An `ambient()` followed by a `diffuse(N)` under the same mask makes one renderer call for
+/// both, and only where that is right: a normal written between the two calls, a `diffuse`
+/// of another normal, one under a varying condition and a normal computed before the
+/// `ambient()` call, against the interpreter at f32, x8 and dual-f32.
+#[test]
+fn ambient_then_diffuse_is_one_light_loop_only_where_it_applies() {
+    let src = r#"
+surface ambdiff(float Ka = 1; float Kd = 0.8;)
+{
+    normal Nf = faceforward(normalize(N), I);
+    color a1 = Ka * ambient();
+    color d1 = Kd * diffuse(Nf);
+    normal Nt = normalize(Nf + vector(0.3, -0.2, 0.1));
+    color a2 = ambient();
+    Nt = normalize(Nt + vector(t, 0, 0));
+    color d2 = diffuse(Nt);
+    color a3 = 0, d3 = 0;
+    if (s < 0.5) {
+        a3 = ambient();
+        d3 = diffuse(normalize(N));
+    }
+    normal Nu = normalize(N + vector(0, s, 0));
+    color a4 = ambient();
+    color d4 = diffuse(Nu);
+    color a5 = ambient();
+    color d5 = diffuse(Nf + Nu);
+    Ci = a1 + d1 + 2 * a2 + 3 * d2 + 5 * a3 + 7 * d3 + 11 * a4 + 13 * d4 + 17 * a5 + 19 * d5;
+    Oi = 1;
+}
+"#;
+    let path = std::env::temp_dir().join(format!("anysl_ambdiff_{}.sl", std::process::id()));
+    std::fs::write(&path, src).unwrap();
+    let jit = JitShader::from_file(&path, &[], JitOptions::default()).unwrap();
+    let set = PointSet::random(512, 5);
+    assert!(check::<f32>("ambdiff", &jit, &set) < 1e-4, "f32");
+    assert!(check::<F32x8>("ambdiff", &jit, &set) < 1e-4, "x8");
+    assert!(check::<Dual<f32>>("ambdiff", &jit, &set) < 1e-4, "dual");
+    let _ = std::fs::remove_file(&path);
+}
+
+/// In the matte illumination model (`Ka·ambient() + Kd·diffuse(Nf)`, brick and venus) the
+/// `ambient()` call also sums the diffuse term: one call into the renderer remains.
+#[test]
+fn matte_calls_the_renderer_once() {
+    for name in ["brick", "venus"] {
+        let path = rsl_dir().join(format!("{name}.sl"));
+        let jit = JitShader::from_file(&path, &[rsl_dir().join("include")], JitOptions::default()).unwrap();
+        for v in [Variant::F32, Variant::X8] {
+            let cs = anysl_jit::compile_with(&jit.module, &jit.values, v, &jit.opts, true).unwrap();
+            let ir = cs.llvm_ir.unwrap();
+            let calls = ir.lines().filter(|l| l.trim_start().starts_with("call void %")).count();
+            assert_eq!(calls, 1, "{name} {v:?}: {calls} indirect calls in\n{ir}");
+        }
+    }
+}

@@ -177,8 +177,8 @@ fn perlin4_at<F: ShadingFloat>(p: Vec3<F>, t: F, period: Option<(Vec3<F>, F)>, s
     lerp(r, slice(l0, fw), slice(l1, fw - one)) * F::c(0.5)
 }
 
-/// Seeds used for the components of vector-valued noise.
-const VECTOR_SEEDS: [u32; 3] = [0, 0x5bd1_e995, 0x1b87_3593];
+/// Seeds of the three components of vector-valued noise.
+pub const VECTOR_SEEDS: [u32; 3] = [0, 0x5bd1_e995, 0x1b87_3593];
 
 /// Where a noise is evaluated: 1D to 4D, as RSL's overloads of `noise(…)` take it.
 #[derive(Clone, Copy, Debug)]
@@ -307,6 +307,22 @@ fn signed_at<F: ShadingFloat>(d: NoiseDomain<F>, period: Option<NoiseDomain<F>>,
     F::select(n.is_nan(), F::c(0.0), clamp(n, F::c(-1.0), F::c(1.0)))
 }
 
+/// Signed noise of `d` with `seed` (0 for the float noises; [`VECTOR_SEEDS`] for the three
+/// components of the vector noises), not periodic, with the noise kernel inlined into the
+/// caller instead of called out of line. For callers that are themselves one compiled
+/// function per noise selector (the JIT's runtime library), where the out-of-line call only
+/// adds a second call and the copies of its arguments. The same values as [`snoise`]. Types
+/// with derivatives cannot use it: theirs come from [`ShadingFloat::apply`].
+///
+/// # Panics
+/// For a type with derivatives ([`ShadingFloat::HAS_DERIVS`]).
+#[inline(always)]
+#[must_use]
+pub fn snoise_inlined<F: ShadingFloat>(d: NoiseDomain<F>, seed: u32) -> F {
+    assert!(!F::HAS_DERIVS, "snoise_inlined would drop derivatives");
+    signed_at(d, None, seed)
+}
+
 /// RSL `snoise`: signed noise in [-1, 1].
 #[inline(always)]
 #[must_use]
@@ -404,26 +420,32 @@ pub fn vcellnoise<F: ShadingFloat>(d: NoiseDomain<F>) -> Vec3<F> {
 #[inline(always)]
 #[must_use]
 pub fn fbm<F: ShadingFloat>(d: NoiseDomain<F>, octaves: u32, lacunarity: f64, gain: f64) -> F {
-    let mut sum = F::c(0.0);
-    let mut amp = 1.0;
-    let mut freq = 1.0;
-    for _ in 0..octaves {
-        sum += F::c(amp) * snoise(d.scaled(F::c(freq)));
-        amp *= gain;
-        freq *= lacunarity;
-    }
-    sum
+    octave_sum(d, octaves, lacunarity, gain, snoise)
 }
 
 /// Turbulence: `Σ gain^o · |snoise(lacunarity^o · p)|` (the classic granite/marble sum).
 #[inline(always)]
 #[must_use]
 pub fn turbulence<F: ShadingFloat>(d: NoiseDomain<F>, octaves: u32, lacunarity: f64, gain: f64) -> F {
+    octave_sum(d, octaves, lacunarity, gain, |d| snoise(d).abs())
+}
+
+/// `Σ gain^o · octave(lacunarity^o · d)` over `octaves` octaves: [`fbm`] and [`turbulence`]
+/// with the octave function given (e.g. built on [`snoise_inlined`]).
+#[inline(always)]
+#[must_use]
+pub fn octave_sum<F: ShadingFloat>(
+    d: NoiseDomain<F>,
+    octaves: u32,
+    lacunarity: f64,
+    gain: f64,
+    octave: impl Fn(NoiseDomain<F>) -> F,
+) -> F {
     let mut sum = F::c(0.0);
     let mut amp = 1.0;
     let mut freq = 1.0;
     for _ in 0..octaves {
-        sum += F::c(amp) * snoise(d.scaled(F::c(freq))).abs();
+        sum += F::c(amp) * octave(d.scaled(F::c(freq)));
         amp *= gain;
         freq *= lacunarity;
     }
