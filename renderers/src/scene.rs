@@ -289,7 +289,10 @@ impl<S, L> Scene<S, L> {
 /// Everything a surface shader sees at one hit, in world space, plus the screen-space
 /// derivative seeds (zero for rays without differentials). `u`, `v` are the mesh's texture
 /// coordinates, like `s`, `t`.
+/// `repr(C)`, every field 4-byte floats (or the `u32` shader index): the packet renderer
+/// transposes these records with vector shuffles.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[repr(C)]
 pub struct SurfaceHit {
     /// Position.
     pub p: Vec3A,

@@ -106,15 +106,89 @@ pub fn gather_globals<F: ShadingFloat>(hits: &[SurfaceHit], group: u32, first: u
     gather_globals_read(hits, group, first, GlobalSet::ALL)
 }
 
-/// Number of hit components [`gather_globals_read`] transposes.
-const COMPONENTS: usize = 43;
+/// Floats in a hit record ([`SurfaceHit`] is `repr(C)` and made of 4-byte fields).
+const HIT_FLOATS: usize = core::mem::size_of::<SurfaceHit>() / 4;
+/// The record read as 8-float chunks (the last one ends in padding, see [`transpose_hits`]).
+const HIT_CHUNKS: usize = HIT_FLOATS / 8;
+const _: () = assert!(HIT_FLOATS == 8 * HIT_CHUNKS && core::mem::align_of::<SurfaceHit>() == 16);
+
+/// Float offset of a field of [`SurfaceHit`].
+macro_rules! at {
+    ($field:ident) => {
+        core::mem::offset_of!(SurfaceHit, $field) / 4
+    };
+}
+/// Floats of the last chunk that are fields (the rest is the record's tail padding).
+const LAST_CHUNK_FIELDS: usize = at!(surface) + 1 - 8 * (HIT_CHUNKS - 1);
+
+/// Lane-major records to component-major rows: `out[f][lane]` = float `f` of `rows[lane]`,
+/// for the floats of the 8-float chunks in `chunks` (bit `k` = floats `8k .. 8k + 8`), with
+/// 8×8 (and 4×4) register transposes — where writing each float of each lane on its own,
+/// then loading a row as a vector, costs as much as a simple shader (and a load that follows
+/// narrower stores cannot take its value from them).
+///
+/// # Safety
+/// `out` points at `HIT_FLOATS` writable rows of `MAX_LANES` floats, `rows.len() <= MAX_LANES`.
+#[inline(always)]
+unsafe fn transpose_hits(rows: &[&SurfaceHit], chunks: u32, out: *mut [f32; MAX_LANES]) {
+    use wide::{f32x4, f32x8};
+    let n = rows.len();
+    // SAFETY (every write below): `f < HIT_FLOATS`, lanes `< n <= MAX_LANES`.
+    let put = |f: usize, l: usize, v: &[f32]| unsafe {
+        core::ptr::copy_nonoverlapping(v.as_ptr(), out.add(f).cast::<f32>().add(l), v.len());
+    };
+    let base = |l: usize| (rows[l] as *const SurfaceHit).cast::<f32>();
+    for k in 0..HIT_CHUNKS {
+        if (chunks >> k) & 1 == 0 {
+            continue;
+        }
+        if k == HIT_CHUNKS - 1 {
+            // The last chunk ends in padding, which must not be read: float by float.
+            for f in 8 * k..8 * k + LAST_CHUNK_FIELDS {
+                for (l, row) in rows.iter().enumerate() {
+                    // SAFETY: `f` is a field's float of a `repr(C)` record of 4-byte fields.
+                    put(f, l, &[unsafe { *(*row as *const SurfaceHit).cast::<f32>().add(f) }]);
+                }
+            }
+            continue;
+        }
+        if n.is_multiple_of(8) {
+            for half in 0..n / 8 {
+                // SAFETY: chunk `k < HIT_CHUNKS - 1` lies inside the record, all of it fields.
+                let m: [f32x8; 8] = core::array::from_fn(|j| {
+                    f32x8::from(unsafe { base(8 * half + j).add(8 * k).cast::<[f32; 8]>().read_unaligned() })
+                });
+                for (j, col) in f32x8::transpose(m).iter().enumerate() {
+                    put(8 * k + j, 8 * half, &col.to_array());
+                }
+            }
+        } else if n == 4 {
+            for q in 0..2 {
+                // SAFETY: as above.
+                let m: [f32x4; 4] = core::array::from_fn(|j| {
+                    f32x4::from(unsafe { base(j).add(8 * k + 4 * q).cast::<[f32; 4]>().read_unaligned() })
+                });
+                for (j, col) in f32x4::transpose(m).iter().enumerate() {
+                    put(8 * k + 4 * q + j, 0, &col.to_array());
+                }
+            }
+        } else {
+            for f in 8 * k..8 * k + 8 {
+                for l in 0..n {
+                    // SAFETY: as above.
+                    put(f, l, &[unsafe { *base(l).add(f) }]);
+                }
+            }
+        }
+    }
+}
 
 /// [`gather_globals`] of only the globals in `read` (see
 /// [`SurfaceShader::globals_read`]); the others are zero.
 ///
-/// The hits are transposed in two passes: every lane's components are written to a scratch
-/// block first, then each component is loaded as one vector. Loading a vector right after
-/// writing its lanes one by one would stall on store forwarding for every component.
+/// The hit records are transposed chunk by chunk ([`transpose_hits`]) into a scratch block,
+/// only the chunks holding what `read` (and the derivatives of a dual `F`) needs; each
+/// component is then loaded as one vector.
 #[inline(always)]
 #[must_use]
 pub fn gather_globals_read<F: ShadingFloat>(
@@ -124,93 +198,68 @@ pub fn gather_globals_read<F: ShadingFloat>(
     read: GlobalSet,
 ) -> Globals<F> {
     debug_assert!(F::LANES <= MAX_LANES && hits.len() >= F::LANES);
-    let mut scratch = core::mem::MaybeUninit::<[[f32; MAX_LANES]; COMPONENTS]>::uninit();
-    let block = scratch.as_mut_ptr().cast::<[f32; MAX_LANES]>();
     let derivs = F::HAS_DERIVS;
     let has = |x: GlobalSet| read.contains(x);
-    for i in 0..F::LANES {
-        let h = &hits[if (group >> i) & 1 != 0 { i } else { first }];
-        // SAFETY: `c < COMPONENTS` and `i < F::LANES <= MAX_LANES`: inside the block.
-        let put = |c: usize, v: f32| unsafe { (*block.add(c))[i] = v };
-        let put3 = |c: usize, v: Vec3A| {
-            put(c, v.x);
-            put(c + 1, v.y);
-            put(c + 2, v.z);
-        };
-        if has(GlobalSet::P) {
-            put3(0, h.p);
-        }
-        if has(GlobalSet::N) {
-            put3(3, h.n);
-        }
-        if has(GlobalSet::NG) {
-            put3(6, h.ng);
-        }
-        if has(GlobalSet::I) {
-            put3(9, h.i);
-        }
-        if has(GlobalSet::E) {
-            put3(12, h.e);
-        }
-        if has(GlobalSet::S) || has(GlobalSet::U) {
-            put(15, h.s);
-        }
-        if has(GlobalSet::T) || has(GlobalSet::V) {
-            put(16, h.t);
-        }
-        if has(GlobalSet::DU) {
-            put(17, h.du);
-        }
-        if has(GlobalSet::DV) {
-            put(18, h.dv);
-        }
-        if has(GlobalSet::DPDU) {
-            put3(19, h.dpdu);
-        }
-        if has(GlobalSet::DPDV) {
-            put3(22, h.dpdv);
-        }
-        if derivs {
-            put3(25, h.dpdx);
-            put3(28, h.dpdy);
-            put3(31, h.dndx);
-            put3(34, h.dndy);
-            put(37, h.dsdx);
-            put(38, h.dsdy);
-            put(39, h.dtdx);
-            put(40, h.dtdy);
+    let chunk = |f: usize| 1u32 << (f / 8);
+    let mut chunks = 0;
+    for (bit, f) in [
+        (GlobalSet::P, at!(p)),
+        (GlobalSet::N, at!(n)),
+        (GlobalSet::NG, at!(ng)),
+        (GlobalSet::I, at!(i)),
+        (GlobalSet::E, at!(e)),
+        (GlobalSet::S.union(GlobalSet::U), at!(s)),
+        (GlobalSet::T.union(GlobalSet::V), at!(t)),
+        (GlobalSet::DU, at!(du)),
+        (GlobalSet::DV, at!(dv)),
+        (GlobalSet::DPDU, at!(dpdu)),
+        (GlobalSet::DPDV, at!(dpdv)),
+    ] {
+        if bit.0 & read.0 != 0 {
+            chunks |= chunk(f) | chunk(f + 2);
         }
     }
-    // SAFETY: component `c`'s first `F::LANES` values were all written above (for every
-    // component read below: the same conditions guard the writes and the reads).
-    let ld = |c: usize| -> F { F::load(unsafe { core::slice::from_raw_parts(block.add(c).cast::<f32>(), F::LANES) }) };
-    let ld3 = |c: usize| Vec3::new(ld(c), ld(c + 1), ld(c + 2));
+    if derivs {
+        for f in [at!(dpdx), at!(dpdy), at!(dndx), at!(dndy), at!(dsdx), at!(dtdy)] {
+            chunks |= chunk(f) | chunk(f + 2);
+        }
+    }
+    let rows: [&SurfaceHit; MAX_LANES] =
+        core::array::from_fn(|i| &hits[if i < F::LANES && (group >> i) & 1 != 0 { i } else { first }]);
+    let mut scratch = core::mem::MaybeUninit::<[[f32; MAX_LANES]; HIT_FLOATS]>::uninit();
+    let block = scratch.as_mut_ptr().cast::<[f32; MAX_LANES]>();
+    // SAFETY: `block` has `HIT_FLOATS` rows of `MAX_LANES >= F::LANES` floats.
+    unsafe { transpose_hits(&rows[..F::LANES], chunks, block) };
+    // SAFETY: the first `F::LANES` floats of row `f` were written for every row read below:
+    // `chunks` holds the chunk of every float the same conditions read.
+    let ld = |f: usize| -> F { F::load(unsafe { core::slice::from_raw_parts(block.add(f).cast::<f32>(), F::LANES) }) };
+    let ld3 = |f: usize| Vec3::new(ld(f), ld(f + 1), ld(f + 2));
     let zero3 = Vec3::splat(F::c(0.0));
-    let pick3 = |bit: GlobalSet, c: usize| if has(bit) { ld3(c) } else { zero3 };
+    let pick3 = |bit: GlobalSet, f: usize| if has(bit) { ld3(f) } else { zero3 };
     let seed = |v: F, dx: usize, dy: usize| if derivs { v.with_derivs(ld(dx), ld(dy)) } else { v };
     let seed3 = |v: Vec3<F>, dx: usize, dy: usize| {
         Vec3::new(seed(v.x, dx, dy), seed(v.y, dx + 1, dy + 1), seed(v.z, dx + 2, dy + 2))
     };
-    let (p, n, i) = (pick3(GlobalSet::P, 0), pick3(GlobalSet::N, 3), pick3(GlobalSet::I, 9));
-    let st = |bits: GlobalSet, c: usize| if bits.0 & read.0 != 0 { ld(c) } else { F::c(0.0) };
-    let s = st(GlobalSet::S.union(GlobalSet::U), 15);
-    let t = st(GlobalSet::T.union(GlobalSet::V), 16);
-    let (s, t) = (seed(s, 37, 38), seed(t, 39, 40));
+    let (p, n, i) = (pick3(GlobalSet::P, at!(p)), pick3(GlobalSet::N, at!(n)), pick3(GlobalSet::I, at!(i)));
+    let st = |bits: GlobalSet, f: usize| if bits.0 & read.0 != 0 { ld(f) } else { F::c(0.0) };
+    let s = st(GlobalSet::S.union(GlobalSet::U), at!(s));
+    let t = st(GlobalSet::T.union(GlobalSet::V), at!(t));
+    let (s, t) = (seed(s, at!(dsdx), at!(dsdy)), seed(t, at!(dtdx), at!(dtdy)));
     Globals {
         // The eye is fixed, so I = P − E changes like P.
-        P: seed3(p, 25, 28),
-        N: seed3(n, 31, 34),
-        Ng: pick3(GlobalSet::NG, 6),
-        I: seed3(i, 25, 28),
-        E: pick3(GlobalSet::E, 12),
+        P: seed3(p, at!(dpdx), at!(dpdy)),
+        N: seed3(n, at!(dndx), at!(dndy)),
+        Ng: pick3(GlobalSet::NG, at!(ng)),
+        I: seed3(i, at!(dpdx), at!(dpdy)),
+        E: pick3(GlobalSet::E, at!(e)),
         s,
         t,
         u: s,
         v: t,
-        du: st(GlobalSet::DU, 17),
-        dv: st(GlobalSet::DV, 18),
-        dPdu: pick3(GlobalSet::DPDU, 19),
-        dPdv: pick3(GlobalSet::DPDV, 22),
+        du: st(GlobalSet::DU, at!(du)),
+        dv: st(GlobalSet::DV, at!(dv)),
+        dPdu: pick3(GlobalSet::DPDU, at!(dpdu)),
+        dPdv: pick3(GlobalSet::DPDV, at!(dpdv)),
         Cs: Color::c(1.0, 1.0, 1.0),
         Os: Color::c(1.0, 1.0, 1.0),
     }

@@ -3,6 +3,7 @@
 //! runs one file's tests.
 
 mod common;
+mod gather;
 mod geometry;
 mod lighting;
 mod renderers;
