@@ -870,10 +870,7 @@ impl<'c, 'm> Cg<'c, 'm> {
             Op::Call { name, .. } => name.clone(),
             _ => return self.emit_call(v, args),
         };
-        let triple = |a: Option<&Val<'c>>| match a {
-            Some(Val::Num(c)) if c.len() == 3 && c.iter().all(|s| s.d.is_none()) => Some(c.clone()),
-            _ => None,
-        };
+        let triple = |a: Option<&Val<'c>>| a.and_then(Self::plain_triple);
         match name.as_str() {
             "specular" => {
                 let n = triple(args.first());
@@ -892,17 +889,24 @@ impl<'c, 'm> Cg<'c, 'm> {
                 let memo = match self.lit {
                     Some(m) if m.f == f && (n.is_some() || (name == "ambient" && m.amb.is_some())) => m,
                     _ => {
-                        if name == "ambient" {
-                            if let Some(r) = self.ambient_with_diffuse(v) {
-                                return Ok(r);
-                            }
+                        return match (name == "ambient").then(|| self.ambient_with_diffuse(v)).flatten() {
+                            Some(r) => Ok(r),
+                            None => self.emit_call(v, args),
                         }
-                        return self.emit_call(v, args);
                     }
                 };
                 self.lit_guarded(memo, n.as_deref(), |cg| cg.emit_call(v, args))
             }
             _ => self.emit_call(v, args),
+        }
+    }
+
+    /// The components of a triple without derivatives (a normal the light sums can be kept
+    /// for).
+    fn plain_triple(v: &Val<'c>) -> Option<Vec<S<'c>>> {
+        match v {
+            Val::Num(c) if c.len() == 3 && c.iter().all(|s| s.d.is_none()) => Some(c.clone()),
+            _ => None,
         }
     }
 
@@ -915,12 +919,8 @@ impl<'c, 'm> Cg<'c, 'm> {
             return None;
         }
         let n = match *self.amb_partner.get(&v.0)? {
-            NormalSrc::Slot(s) => self.load_slot(s),
-            NormalSrc::Value(a) => self.vals[a.0 as usize].clone()?,
-        };
-        let n = match n {
-            Val::Num(c) if c.len() == 3 && c.iter().all(|s| s.d.is_none()) => c,
-            _ => return None,
+            NormalSrc::Slot(s) => Self::plain_triple(&self.load_slot(s))?,
+            NormalSrc::Value(a) => Self::plain_triple(self.vals[a.0 as usize].as_ref()?)?,
         };
         let sums = self.host_call(host::DIFFUSE, 1, &n, 6);
         self.lit_store(&n, &sums);

@@ -406,7 +406,6 @@ unsafe fn noise_op<F: JitFloat>(inp: *const f32, out: *mut f32, aux: u32) {
     // compiled copy for its selector, and calling the kernel out of line would add a call
     // and copies of its arguments. Same values as the library functions.
     let inlined = !F::DUAL && dims <= 3;
-    let h = F::c(0.5);
     match kind {
         nkind::NOISE | nkind::SNOISE if inlined => {
             let signed = kind == nkind::SNOISE;
@@ -415,13 +414,13 @@ unsafe fn noise_op<F: JitFloat>(inp: *const f32, out: *mut f32, aux: u32) {
                 if signed {
                     s
                 } else {
-                    h + h * s
+                    unsigned_noise(s)
                 }
             };
             if w == 1 {
                 o.f(n(0));
             } else {
-                o.v3(Vec3::new(n(VECTOR_SEEDS[0]), n(VECTOR_SEEDS[1]), n(VECTOR_SEEDS[2])));
+                o.v3(noise_vector(n));
             }
         }
         nkind::NOISE | nkind::SNOISE => {

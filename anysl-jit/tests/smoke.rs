@@ -213,26 +213,41 @@ surface litmemo(float Ks = 0.5; float roughness = 0.2;)
     Oi = 1;
 }
 "#;
-    let path = std::env::temp_dir().join(format!("anysl_litmemo_{}.sl", std::process::id()));
+    matches_interpreter_at_f32_x8_dual("litmemo", src, 3);
+}
+
+/// Compiles `src` and checks it against the interpreter at f32, x8 and dual-f32 on 512
+/// random points (`seed`).
+fn matches_interpreter_at_f32_x8_dual(name: &str, src: &str, seed: u64) {
+    let path = std::env::temp_dir().join(format!("anysl_{name}_{}.sl", std::process::id()));
     std::fs::write(&path, src).unwrap();
     let jit = JitShader::from_file(&path, &[], JitOptions::default()).unwrap();
-    let set = PointSet::random(512, 3);
-    assert!(check::<f32>("litmemo", &jit, &set) < 1e-4, "f32");
-    assert!(check::<F32x8>("litmemo", &jit, &set) < 1e-4, "x8");
-    assert!(check::<Dual<f32>>("litmemo", &jit, &set) < 1e-4, "dual");
+    let set = PointSet::random(512, seed);
+    assert!(check::<f32>(name, &jit, &set) < 1e-4, "f32");
+    assert!(check::<F32x8>(name, &jit, &set) < 1e-4, "x8");
+    assert!(check::<Dual<f32>>(name, &jit, &set) < 1e-4, "dual");
     let _ = std::fs::remove_file(&path);
+}
+
+/// Indirect calls (calls into the renderer) left in the optimized IR of `name` at f32 and x8.
+fn renderer_calls(name: &str) -> Vec<(Variant, usize, String)> {
+    let path = rsl_dir().join(format!("{name}.sl"));
+    let jit = JitShader::from_file(&path, &[rsl_dir().join("include")], JitOptions::default()).unwrap();
+    [Variant::F32, Variant::X8]
+        .into_iter()
+        .map(|v| {
+            let ir = anysl_jit::compile_with(&jit.module, &jit.values, v, &jit.opts, true).unwrap().llvm_ir.unwrap();
+            let calls = ir.lines().filter(|l| l.trim_start().starts_with("call void %")).count();
+            (v, calls, ir)
+        })
+        .collect()
 }
 
 /// In the plastic illumination model (`ambient() + diffuse(Nf) + specular(Nf, V, r)`) the
 /// kept sums fold: one call into the renderer remains, the fused light loop.
 #[test]
 fn plastic_calls_the_renderer_once() {
-    let path = rsl_dir().join("plastic.sl");
-    let jit = JitShader::from_file(&path, &[rsl_dir().join("include")], JitOptions::default()).unwrap();
-    for v in [Variant::F32, Variant::X8] {
-        let cs = anysl_jit::compile_with(&jit.module, &jit.values, v, &jit.opts, true).unwrap();
-        let ir = cs.llvm_ir.unwrap();
-        let calls = ir.lines().filter(|l| l.trim_start().starts_with("call void %")).count();
+    for (v, calls, ir) in renderer_calls("plastic") {
         assert_eq!(calls, 1, "{v:?}: {calls} indirect calls in\n{ir}");
     }
 }
@@ -267,14 +282,7 @@ surface ambdiff(float Ka = 1; float Kd = 0.8;)
     Oi = 1;
 }
 "#;
-    let path = std::env::temp_dir().join(format!("anysl_ambdiff_{}.sl", std::process::id()));
-    std::fs::write(&path, src).unwrap();
-    let jit = JitShader::from_file(&path, &[], JitOptions::default()).unwrap();
-    let set = PointSet::random(512, 5);
-    assert!(check::<f32>("ambdiff", &jit, &set) < 1e-4, "f32");
-    assert!(check::<F32x8>("ambdiff", &jit, &set) < 1e-4, "x8");
-    assert!(check::<Dual<f32>>("ambdiff", &jit, &set) < 1e-4, "dual");
-    let _ = std::fs::remove_file(&path);
+    matches_interpreter_at_f32_x8_dual("ambdiff", src, 5);
 }
 
 /// In the matte illumination model (`Ka·ambient() + Kd·diffuse(Nf)`, brick and venus) the
@@ -282,12 +290,7 @@ surface ambdiff(float Ka = 1; float Kd = 0.8;)
 #[test]
 fn matte_calls_the_renderer_once() {
     for name in ["brick", "venus"] {
-        let path = rsl_dir().join(format!("{name}.sl"));
-        let jit = JitShader::from_file(&path, &[rsl_dir().join("include")], JitOptions::default()).unwrap();
-        for v in [Variant::F32, Variant::X8] {
-            let cs = anysl_jit::compile_with(&jit.module, &jit.values, v, &jit.opts, true).unwrap();
-            let ir = cs.llvm_ir.unwrap();
-            let calls = ir.lines().filter(|l| l.trim_start().starts_with("call void %")).count();
+        for (v, calls, ir) in renderer_calls(name) {
             assert_eq!(calls, 1, "{name} {v:?}: {calls} indirect calls in\n{ir}");
         }
     }

@@ -224,8 +224,12 @@ pub fn gather_globals_read<F: ShadingFloat>(
             chunks |= chunk(f) | chunk(f + 2);
         }
     }
-    let rows: [&SurfaceHit; MAX_LANES] =
-        core::array::from_fn(|i| &hits[if i < F::LANES && (group >> i) & 1 != 0 { i } else { first }]);
+    let mut rows = [&hits[first]; MAX_LANES];
+    for (i, row) in rows.iter_mut().enumerate().take(F::LANES) {
+        if (group >> i) & 1 != 0 {
+            *row = &hits[i];
+        }
+    }
     let mut scratch = core::mem::MaybeUninit::<[[f32; MAX_LANES]; HIT_FLOATS]>::uninit();
     let block = scratch.as_mut_ptr().cast::<[f32; MAX_LANES]>();
     // SAFETY: `block` has `HIT_FLOATS` rows of `MAX_LANES >= F::LANES` floats.

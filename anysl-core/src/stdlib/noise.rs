@@ -334,7 +334,21 @@ pub fn snoise<F: ShadingFloat>(d: NoiseDomain<F>) -> F {
 #[inline(always)]
 #[must_use]
 pub fn noise<F: ShadingFloat>(d: NoiseDomain<F>) -> F {
-    F::c(0.5) + F::c(0.5) * signed(d, None, 0)
+    unsigned_noise(signed(d, None, 0))
+}
+
+/// Noise in [0, 1] from signed noise `s` in [-1, 1] (what `noise` is of `snoise`).
+#[inline(always)]
+#[must_use]
+pub fn unsigned_noise<F: ShadingFloat>(s: F) -> F {
+    F::c(0.5) + F::c(0.5) * s
+}
+
+/// A vector-valued noise: `component(seed)` for each seed of [`VECTOR_SEEDS`].
+#[inline(always)]
+#[must_use]
+pub fn noise_vector<F: ShadingFloat>(component: impl Fn(u32) -> F) -> Vec3<F> {
+    Vec3::new(component(VECTOR_SEEDS[0]), component(VECTOR_SEEDS[1]), component(VECTOR_SEEDS[2]))
 }
 
 /// RSL `pnoise`: `noise` that repeats with `period` along each axis (periods are rounded to
@@ -342,7 +356,7 @@ pub fn noise<F: ShadingFloat>(d: NoiseDomain<F>) -> F {
 #[inline(always)]
 #[must_use]
 pub fn pnoise<F: ShadingFloat>(d: NoiseDomain<F>, period: NoiseDomain<F>) -> F {
-    F::c(0.5) + F::c(0.5) * signed(d, Some(period), 0)
+    unsigned_noise(signed(d, Some(period), 0))
 }
 
 /// Signed periodic noise.
@@ -356,17 +370,14 @@ pub fn psnoise<F: ShadingFloat>(d: NoiseDomain<F>, period: NoiseDomain<F>) -> F 
 #[inline(always)]
 #[must_use]
 pub fn vnoise<F: ShadingFloat>(d: NoiseDomain<F>) -> Vec3<F> {
-    let h = F::c(0.5);
-    let n = |s| h + h * signed(d, None, s);
-    Vec3::new(n(VECTOR_SEEDS[0]), n(VECTOR_SEEDS[1]), n(VECTOR_SEEDS[2]))
+    noise_vector(|s| unsigned_noise(signed(d, None, s)))
 }
 
 /// Signed vector noise in [-1, 1]³.
 #[inline(always)]
 #[must_use]
 pub fn vsnoise<F: ShadingFloat>(d: NoiseDomain<F>) -> Vec3<F> {
-    let n = |s| signed(d, None, s);
-    Vec3::new(n(VECTOR_SEEDS[0]), n(VECTOR_SEEDS[1]), n(VECTOR_SEEDS[2]))
+    noise_vector(|s| signed(d, None, s))
 }
 
 /// Colour noise in [0, 1]³.
@@ -380,9 +391,7 @@ pub fn cnoise<F: ShadingFloat>(d: NoiseDomain<F>) -> Color<F> {
 #[inline(always)]
 #[must_use]
 pub fn vpnoise<F: ShadingFloat>(d: NoiseDomain<F>, period: NoiseDomain<F>) -> Vec3<F> {
-    let h = F::c(0.5);
-    let n = |s| h + h * signed(d, Some(period), s);
-    Vec3::new(n(VECTOR_SEEDS[0]), n(VECTOR_SEEDS[1]), n(VECTOR_SEEDS[2]))
+    noise_vector(|s| unsigned_noise(signed(d, Some(period), s)))
 }
 
 /// Lattice bits of a domain's cell.
