@@ -3,7 +3,7 @@
 //! names a concrete shader. Building a scene flattens every instance into world-space
 //! triangles and builds the BVH once.
 
-use crate::accel::{Accel, Hit};
+use crate::accel::{Accel, Hit, RayPacket, MAX_PACKET};
 use crate::camera::Camera;
 use crate::mesh::Mesh;
 use glam::{Mat4, Vec2, Vec3A};
@@ -175,6 +175,13 @@ impl<S, L> Scene<S, L> {
     #[must_use]
     pub fn intersect(&self, origin: Vec3A, dir: Vec3A, tmin: f32, tmax: f32) -> Option<Hit> {
         self.accel.closest_hit(origin, dir, tmin, tmax)
+    }
+
+    /// The closest hits of a packet of rays traced together ([`Accel::closest_hits`]): the
+    /// bits of the rays that hit, their hits in `out`.
+    #[inline]
+    pub fn intersect_packet(&self, rays: &RayPacket, out: &mut [Hit; MAX_PACKET]) -> u32 {
+        self.accel.closest_hits(rays, out)
     }
 
     /// The shading record of `hit` on the ray `origin + t · dir`; with `differential =

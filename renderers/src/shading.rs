@@ -7,6 +7,7 @@
 //! Lanes are addressed by bit masks (`u32`, bit `i` = lane `i`), so a packet of up to
 //! [`MAX_LANES`] rays needs no allocation anywhere on this path.
 
+use crate::accel::{Hit, RayPacket, MAX_PACKET};
 use crate::scene::{Scene, SurfaceHit};
 use anysl_ad::Dual;
 use anysl_core::{
@@ -17,6 +18,7 @@ use glam::Vec3A;
 
 /// The widest packet (and the widest `ShadingFloat`) the renderers handle.
 pub const MAX_LANES: usize = 16;
+const _: () = assert!(MAX_LANES <= MAX_PACKET, "a packet of shading lanes must fit a ray packet");
 /// How many `trace` calls may nest; deeper ones return the sky.
 pub const MAX_TRACE_DEPTH: u32 = 4;
 /// How many partly transparent surfaces a ray may pass through.
@@ -536,17 +538,29 @@ where
 {
     let scene = tracer.scene;
     let mut hits = [SurfaceHit::default(); MAX_LANES];
-    let mut hit_bits = 0u32;
-    for i in 0..F::LANES {
-        if (active >> i) & 1 == 0 {
-            continue;
+    let hit_bits = if F::LANES == 1 {
+        // One ray: straight to the single-ray traversal.
+        let (o, d) = (origins[0], dirs[0]);
+        match scene.intersect(o, d, ray_epsilon(o), f32::INFINITY) {
+            Some(h) if active & 1 != 0 => {
+                hits[0] = scene.surface_hit(&h, o, d, None);
+                1
+            }
+            _ => 0,
         }
-        let (o, d) = (origins[i], dirs[i]);
-        if let Some(h) = scene.intersect(o, d, ray_epsilon(o), f32::INFINITY) {
-            hits[i] = scene.surface_hit(&h, o, d, None);
-            hit_bits |= 1 << i;
+    } else {
+        // The lanes' rays as one packet (RTfact's secondary packets).
+        let mut rays = RayPacket::default();
+        for i in (0..F::LANES).filter(|i| (active >> i) & 1 != 0) {
+            rays.set(i, origins[i], dirs[i], ray_epsilon(origins[i]), f32::INFINITY);
         }
-    }
+        let mut found = [Hit { t: 0.0, prim: 0, b1: 0.0, b2: 0.0 }; MAX_PACKET];
+        let bits = scene.intersect_packet(&rays, &mut found);
+        for i in (0..F::LANES).filter(|i| (bits >> i) & 1 != 0) {
+            hits[i] = scene.surface_hit(&found[i], origins[i], dirs[i], None);
+        }
+        bits
+    };
     let lanes = Lanes { hits: &hits, dirs, active, hit: hit_bits, camera };
     shade_lanes::<F, S, L>(tracer, &lanes, depth)
 }
@@ -559,26 +573,37 @@ fn shadow_visibility<F: ShadingFloat, S, L>(
     p: Vec3<F>,
     light: &LightOutput<F>,
 ) -> F {
-    let mut vis = [1.0f32; MAX_LANES];
-    for (i, v) in vis.iter_mut().enumerate().take(F::LANES) {
-        if !mask.lane(i) {
-            continue;
-        }
+    // The shadow ray of lane `i` as (origin, unit direction, tmin, tmax), if it has one.
+    let shadow_ray = |i: usize| {
         let o = vec_lane(&p, i);
         let to_light = -vec_lane(&light.l, i);
         let eps = ray_epsilon(o);
-        let blocked = match light.emission {
+        match light.emission {
             Emission::Local => {
                 let dist = to_light.length();
-                dist > 2.0 * eps && scene.accel().occluded(o, to_light / dist, eps, dist - eps)
+                (dist > 2.0 * eps).then(|| (o, to_light / dist, eps, dist - eps))
             }
-            Emission::Distant => match to_light.try_normalize() {
-                Some(d) => scene.accel().occluded(o, d, eps, f32::INFINITY),
-                None => false,
-            },
-            Emission::Ambient => false,
-        };
-        if blocked {
+            Emission::Distant => to_light.try_normalize().map(|d| (o, d, eps, f32::INFINITY)),
+            Emission::Ambient => None,
+        }
+    };
+    let lanes = mask_bits::<F>(mask) & if F::LANES >= 32 { u32::MAX } else { (1u32 << F::LANES) - 1 };
+    let blocked = if F::LANES == 1 {
+        let ray = if lanes & 1 != 0 { shadow_ray(0) } else { None };
+        u32::from(ray.is_some_and(|(o, d, tmin, tmax)| scene.accel().occluded(o, d, tmin, tmax)))
+    } else {
+        // All lanes' shadow rays towards this light as one packet.
+        let mut rays = RayPacket::default();
+        for i in (0..F::LANES).filter(|i| (lanes >> i) & 1 != 0) {
+            if let Some((o, d, tmin, tmax)) = shadow_ray(i) {
+                rays.set(i, o, d, tmin, tmax);
+            }
+        }
+        scene.accel().occluded_packet(&rays)
+    };
+    let mut vis = [1.0f32; MAX_LANES];
+    for (i, v) in vis.iter_mut().enumerate().take(F::LANES) {
+        if (blocked >> i) & 1 != 0 {
             *v = 0.0;
         }
     }

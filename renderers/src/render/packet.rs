@@ -1,5 +1,6 @@
 //! The *packet* renderer (RTfact-like): coherent packets of primary rays over small pixel
-//! blocks (4 rays = 2×2, 8 = 4×2, 16 = 4×4), traced lane by lane through the BVH, then
+//! blocks (4 rays = 2×2, 8 = 4×2, 16 = 4×4), traced together through the BVH (one box test
+//! for all rays of the packet, see [`crate::accel::packet`]), then
 //! **shaded together**: the hits are gathered into the structure-of-arrays globals of a
 //! SIMD [`ShadingFloat`] and each surface shader present in the packet runs once, masked to
 //! its lanes ([`crate::shading::shade_lanes_by`]). A shader whose metadata says
@@ -10,6 +11,7 @@
 //! plug its own packet shading kernel in front of the shaders: [`render_packet_kernel`].
 
 use super::{render_bands, sample_offset, RenderOptions};
+use crate::accel::{Hit, RayPacket, MAX_PACKET};
 use crate::image::Image;
 use crate::scene::{Scene, SurfaceHit};
 use crate::shading::{shade_lanes_by, Depth, FilteredShading, GroupShading, KernelShading, Lanes, Tracer, MAX_LANES};
@@ -214,6 +216,7 @@ where
     render_bands(width, height, band_rows, opts, &label, |y0, pixels| {
         let rows = (pixels.len() / width as usize) as u32;
         let mut hits = [SurfaceHit::default(); MAX_LANES];
+        let mut found = [Hit { t: 0.0, prim: 0, b1: 0.0, b2: 0.0 }; MAX_PACKET];
         let mut dirs = [Vec3A::Z; MAX_LANES];
         let mut out = [[0.0f32; MAX_LANES]; 3];
         let (mut band_ticks, mut band_points) = (0u64, 0u64);
@@ -231,20 +234,20 @@ where
                 let mut acc = [[0.0f32; 3]; MAX_LANES];
                 for k in 0..n * n {
                     let (ox, oy) = sample_offset(k, n);
-                    // Trace the packet.
-                    let mut hit = 0u32;
-                    for lane in 0..packet_lanes {
-                        if (active >> lane) & 1 == 0 {
-                            continue;
-                        }
+                    // Trace the packet: all its rays through the BVH together.
+                    let o = cam.position();
+                    let mut rays = RayPacket::default();
+                    let mut differentials = [(Vec3A::ZERO, Vec3A::ZERO); MAX_LANES];
+                    for lane in (0..packet_lanes).filter(|lane| (active >> lane) & 1 != 0) {
                         let (px, py) = lane_pixel(lane);
                         let (d, ddx, ddy) = cam.ray_differential(px as f32 + ox, (y0 + py) as f32 + oy, footprint);
                         dirs[lane] = d;
-                        let o = cam.position();
-                        if let Some(h) = scene.intersect(o, d, 0.0, f32::INFINITY) {
-                            hits[lane] = scene.surface_hit(&h, o, d, Some((ddx, ddy)));
-                            hit |= 1 << lane;
-                        }
+                        differentials[lane] = (ddx, ddy);
+                        rays.set(lane, o, d, 0.0, f32::INFINITY);
+                    }
+                    let hit = scene.intersect_packet(&rays, &mut found);
+                    for lane in (0..packet_lanes).filter(|lane| (hit >> lane) & 1 != 0) {
+                        hits[lane] = scene.surface_hit(&found[lane], o, dirs[lane], Some(differentials[lane]));
                     }
                     // Shade it, F::LANES lanes at a time.
                     let clock = stats.map(|_| ticks());

@@ -4,7 +4,8 @@
 use crate::common;
 
 use anysl_core::points::SplitMix64;
-use anysl_renderers::{scenes, Camera};
+use anysl_renderers::accel::{RayPacket, MAX_PACKET};
+use anysl_renderers::{scenes, Accel, Camera, Hit};
 use common::{TestLight, TestSurface};
 use glam::Vec3A;
 
@@ -101,4 +102,113 @@ fn embedded_bunny_loads_with_normals_and_uvs() {
     assert_eq!(m.normals.len(), m.positions.len());
     assert!(m.normals.iter().all(|n| (n.length() - 1.0).abs() < 1e-4));
     assert!(m.uvs.iter().all(|uv| (0.0..=1.0).contains(&uv.x) && (0.0..=1.0).contains(&uv.y)));
+}
+
+/// Checks every active ray of `rays` against the brute-force intersector: closest hits
+/// (same distance to the bit; the same triangle and barycentrics unless another triangle
+/// lies at that distance) and occlusion. Returns (hits, ties).
+fn packet_agrees_with_brute_force(accel: &Accel, rays: &RayPacket, what: &str) -> (usize, usize) {
+    let mut out = [Hit { t: -1.0, prim: u32::MAX, b1: 0.0, b2: 0.0 }; MAX_PACKET];
+    let bits = accel.closest_hits(rays, &mut out);
+    assert_eq!(bits & !rays.active, 0, "{what}: an inactive ray reports a hit");
+    let blocked = accel.occluded_packet(rays);
+    assert_eq!(blocked & !rays.active, 0, "{what}: an inactive ray reports a blocker");
+    let (mut hits, mut ties) = (0, 0);
+    for i in (0..MAX_PACKET).filter(|i| (rays.active >> i) & 1 != 0) {
+        let (o, d, tmin, tmax) = (rays.origins[i], rays.dirs[i], rays.tmin[i], rays.tmax[i]);
+        let slow = accel.closest_hit_brute_force(o, d, tmin, tmax);
+        match (((bits >> i) & 1 != 0).then_some(out[i]), slow) {
+            (None, None) => {}
+            (Some(a), Some(b)) => {
+                hits += 1;
+                assert_eq!(a.t, b.t, "{what}, ray {i}: t differs ({a:?} vs {b:?})");
+                if a.prim == b.prim {
+                    assert_eq!((a.b1, a.b2), (b.b1, b.b2), "{what}, ray {i}");
+                } else {
+                    ties += 1;
+                }
+            }
+            (a, b) => panic!("{what}, ray {i} from {o} along {d}: packet {a:?} vs brute force {b:?}"),
+        }
+        let occluded = (blocked >> i) & 1 != 0;
+        assert_eq!(occluded, accel.occluded_brute_force(o, d, tmin, tmax), "{what}, ray {i}: occlusion");
+    }
+    (hits, ties)
+}
+
+#[test]
+fn packets_find_the_hits_single_rays_find_on_the_bunny() {
+    let scene = scenes::bunny(TestSurface::lambert(0.8, [1.0; 3]), Vec::<TestLight>::new(), 8);
+    let accel = scene.accel();
+    let mut rng = SplitMix64(11);
+    let (mut hits, mut ties, mut rays_traced) = (0, 0, 0);
+    for k in 0..3000 {
+        let width = [4, 8, 16, 3, 13][k % 5];
+        let mut rays = RayPacket::default();
+        // Coherent packets (one origin, directions within a small cone, like a pixel block),
+        // incoherent ones (random origins and directions), and packets with holes whose
+        // inactive lanes hold garbage.
+        let o = random_unit(&mut rng) * rng.uniform(0.8, 2.5) as f32;
+        let target =
+            Vec3A::new(rng.uniform(-0.5, 0.5) as f32, rng.uniform(-0.5, 0.5) as f32, rng.uniform(-0.4, 0.4) as f32);
+        let spread = [0.002, 0.05, 2.0][k % 3] as f32;
+        for i in 0..width {
+            let jitter = random_unit(&mut rng) * spread;
+            let (oi, di) = if k % 7 == 3 {
+                (random_unit(&mut rng) * 2.0, random_unit(&mut rng))
+            } else {
+                (o, (target + jitter - o).normalize())
+            };
+            let tmax = if (k + i) % 9 == 0 { rng.uniform(0.1, 3.0) as f32 } else { f32::INFINITY };
+            rays.set(i, oi, di, 0.0, tmax);
+        }
+        if k % 4 == 1 {
+            let holes = (rng.next_u64() as u32) & rays.active & !1;
+            for i in (0..width).filter(|i| (holes >> i) & 1 != 0) {
+                rays.origins[i] = Vec3A::splat(f32::NAN);
+                rays.dirs[i] = Vec3A::new(f32::INFINITY, 0.0, f32::NAN);
+                rays.tmin[i] = f32::NAN;
+            }
+            rays.active &= !holes;
+        }
+        rays_traced += rays.active.count_ones() as usize;
+        let (h, t) = packet_agrees_with_brute_force(accel, &rays, &format!("packet {k}"));
+        hits += h;
+        ties += t;
+    }
+    assert!(hits > rays_traced / 3, "only {hits} of {rays_traced} rays hit the bunny");
+    assert!(ties < rays_traced / 500, "{ties} ties");
+}
+
+#[test]
+fn packets_handle_axis_aligned_grazing_and_far_away_rays() {
+    // A unit square in the plane z = 0 (two triangles), once near the origin and once at
+    // 1e7: rays along the axes (zero direction components), rays in the plane of the square
+    // (grazing: no hit), rays through its shared diagonal, NaN and zero-length directions.
+    // (At 1e7 the f32 spacing is 1, so the square there is 1024 wide.)
+    for (offset, side) in [(Vec3A::ZERO, 1.0), (Vec3A::new(1e7, -1e7, 1e7), 1024.0)] {
+        let q = |x: f32, y: f32| Vec3A::new(x * side, y * side, 0.0) + offset;
+        let accel = Accel::build(&[[q(0.0, 0.0), q(1.0, 0.0), q(1.0, 1.0)], [q(0.0, 0.0), q(1.0, 1.0), q(0.0, 1.0)]]);
+        let mut rays = RayPacket::default();
+        let z = Vec3A::new(0.0, 0.0, -1.0);
+        let cases: [(Vec3A, Vec3A); 12] = [
+            (q(0.25, 0.5) + Vec3A::Z, z),
+            (q(0.75, 0.25) + Vec3A::Z, z),
+            (q(0.5, 0.5) + Vec3A::Z, z),  // on the shared diagonal
+            (q(1.5, 0.5) + Vec3A::Z, z),  // beside the square
+            (q(-1.0, 0.5), Vec3A::X),     // in its plane: grazing
+            (q(0.5, -1.0), Vec3A::Y),     // in its plane: grazing
+            (q(0.5, 0.5) - Vec3A::Z, -z), // from below
+            (q(0.5, 0.5) + Vec3A::Z, Vec3A::ZERO),
+            (q(0.5, 0.5) + Vec3A::Z, Vec3A::new(f32::NAN, 0.0, -1.0)),
+            (q(0.2, 0.3) + Vec3A::Z * 1e3, Vec3A::new(0.3, 0.2, -1e3).normalize() * 7.0),
+            (q(1.0, 1.0) + Vec3A::Z, z), // through a corner
+            (q(0.0, 0.5) + Vec3A::Z, z), // along an edge
+        ];
+        for (i, (o, d)) in cases.iter().enumerate() {
+            rays.set(i, *o, *d, 0.0, f32::INFINITY);
+        }
+        let (hits, _) = packet_agrees_with_brute_force(&accel, &rays, &format!("square at {offset}"));
+        assert!(hits >= 6, "{hits} hits at {offset}");
+    }
 }

@@ -1,13 +1,26 @@
-//! Ray queries over all triangles of a scene: a compressed wide BVH built and traversed by
-//! obvhs ([`Accel::closest_hit`], [`Accel::occluded`]) and, beside it, the brute-force
-//! reference intersector the tests compare it with (same triangle test, every triangle).
+//! Ray queries over all triangles of a scene: single rays through a compressed wide BVH
+//! built and traversed by obvhs ([`Accel::closest_hit`], [`Accel::occluded`]), packets of up
+//! to 16 rays through a binary BVH in SIMD lanes ([`Accel::closest_hits`],
+//! [`Accel::occluded_packet`], see [`packet`]) and, beside them, the brute-force reference
+//! intersector the tests compare both with (same triangle test, every triangle).
+
+mod lanes;
+pub mod packet;
+
+pub use lanes::RayLanes;
+pub use packet::{RayPacket, MAX_PACKET};
 
 use glam::Vec3A;
+use obvhs::bvh2::builder::build_bvh2_from_tris;
 use obvhs::cwbvh::{builder::build_cwbvh_from_tris, CwBvh};
 use obvhs::ray::{Ray, RayHit};
 use obvhs::triangle::Triangle;
 use obvhs::BvhBuildParams;
+use packet::{tri_test, PacketBvh};
 use std::time::Duration;
+
+/// Most triangles in a leaf of the packet BVH.
+const PACKET_LEAF: u32 = 4;
 
 /// The closest intersection of a ray: distance along the (unnormalized) direction,
 /// triangle index and barycentric coordinates of vertices 1 and 2.
@@ -33,34 +46,21 @@ struct PackedTri {
 }
 
 impl PackedTri {
-    /// Möller–Trumbore: `(t, b1, b2)` for a hit with `tmin < t < tmax`.
+    /// Möller–Trumbore: `(t, b1, b2)` for a hit with `tmin < t < tmax` — the packet test of
+    /// [`packet::tri_test`] on one lane, so single rays and packets agree to the bit.
     #[inline(always)]
     fn intersect(&self, o: Vec3A, d: Vec3A, tmin: f32, tmax: f32) -> Option<(f32, f32, f32)> {
-        let pvec = d.cross(self.e2);
-        let det = self.e1.dot(pvec);
-        if det == 0.0 || !det.is_finite() {
-            return None;
-        }
-        let inv = 1.0 / det;
-        let tvec = o - self.v0;
-        let b1 = tvec.dot(pvec) * inv;
-        if !(0.0..=1.0).contains(&b1) {
-            return None;
-        }
-        let qvec = tvec.cross(self.e1);
-        let b2 = d.dot(qvec) * inv;
-        if b2 < 0.0 || b1 + b2 > 1.0 {
-            return None;
-        }
-        let t = self.e2.dot(qvec) * inv;
-        (t > tmin && t < tmax).then_some((t, b1, b2))
+        let (hit, t, b1, b2) = tri_test::<f32>(self, o.to_array(), d.to_array(), tmin, tmax);
+        hit.then_some((t, b1, b2))
     }
 }
 
-/// Triangles in world space with a BVH over them.
+/// Triangles in world space with BVHs over them: a compressed wide one for single rays, a
+/// binary one for packets.
 #[derive(Clone, Debug)]
 pub struct Accel {
     bvh: CwBvh,
+    packet: PacketBvh,
     /// Triangles in BVH leaf order (index = obvhs primitive slot).
     bvh_tris: Vec<PackedTri>,
     /// Triangles in scene order (the brute-force reference walks these).
@@ -77,12 +77,15 @@ impl Accel {
             .map(|(i, [a, b, c])| PackedTri { v0: *a, e1: *b - *a, e2: *c - *a, prim: i as u32 })
             .collect();
         if triangles.is_empty() {
-            return Self { bvh: CwBvh::default(), bvh_tris: Vec::new(), tris };
+            return Self { bvh: CwBvh::default(), packet: PacketBvh::default(), bvh_tris: Vec::new(), tris };
         }
         let obvhs_tris: Vec<Triangle> = triangles.iter().map(|[a, b, c]| Triangle { v0: *a, v1: *b, v2: *c }).collect();
         let bvh = build_cwbvh_from_tris(&obvhs_tris, BvhBuildParams::medium_build(), &mut Duration::default());
         let bvh_tris = bvh.primitive_indices.iter().map(|&i| tris[i as usize]).collect();
-        Self { bvh, bvh_tris, tris }
+        // Packets pay for every triangle test in all lanes: small leaves.
+        let params = BvhBuildParams { max_prims_per_leaf: PACKET_LEAF, ..BvhBuildParams::medium_build() };
+        let packet = PacketBvh::new(&build_bvh2_from_tris(&obvhs_tris, params, &mut Duration::default()), &tris);
+        Self { bvh, packet, bvh_tris, tris }
     }
 
     /// Number of triangles.
@@ -131,6 +134,46 @@ impl Accel {
         !self.bvh.ray_traverse_miss(ray, |r, slot| {
             self.bvh_tris[slot].intersect(r.origin, r.direction, r.tmin, r.tmax).map_or(f32::INFINITY, |h| h.0)
         })
+    }
+
+    /// The closest hit of every active ray of `rays`, traced together (see [`packet`]):
+    /// returns the bits of the rays that hit and stores their hits in `out` (other entries are
+    /// left as they were). Each ray's hit is the one [`Accel::closest_hit`] finds, up to the
+    /// choice between triangles at the same distance.
+    #[inline]
+    pub fn closest_hits(&self, rays: &RayPacket, out: &mut [Hit; MAX_PACKET]) -> u32 {
+        if rays.active.count_ones() == 1 || !self.packet.usable() {
+            return self.each_ray(rays, |i, o, d, tmin, tmax| {
+                self.closest_hit(o, d, tmin, tmax).map(|h| out[i] = h).is_some()
+            });
+        }
+        self.packet.closest_hits(rays, out)
+    }
+
+    /// The active rays of `rays` that some triangle blocks (bits), traced together; each bit
+    /// is what [`Accel::occluded`] says of its ray.
+    #[inline]
+    #[must_use]
+    pub fn occluded_packet(&self, rays: &RayPacket) -> u32 {
+        if rays.active.count_ones() == 1 || !self.packet.usable() {
+            return self.each_ray(rays, |_, o, d, tmin, tmax| self.occluded(o, d, tmin, tmax));
+        }
+        self.packet.occluded(rays)
+    }
+
+    /// The bits of the active rays for which `query(i, origin, dir, tmin, tmax)` holds.
+    #[inline]
+    fn each_ray(&self, rays: &RayPacket, mut query: impl FnMut(usize, Vec3A, Vec3A, f32, f32) -> bool) -> u32 {
+        let mut bits = 0;
+        let mut rest = rays.active;
+        while rest != 0 {
+            let i = rest.trailing_zeros() as usize;
+            if query(i, rays.origins[i], rays.dirs[i], rays.tmin[i], rays.tmax[i]) {
+                bits |= 1 << i;
+            }
+            rest &= rest - 1;
+        }
+        bits
     }
 
     /// Reference for [`Accel::closest_hit`]: tests every triangle (ties keep the lowest index).
