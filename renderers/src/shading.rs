@@ -12,7 +12,7 @@ use crate::scene::{Scene, SurfaceHit};
 use anysl_ad::Dual;
 use anysl_core::{
     in_cone, run_illuminance, sum_ambient, Color, Emission, Exec, GlobalSet, Globals, LightOutput, LightShader, Mask,
-    ShadingContext, ShadingFloat, SurfaceOutput, SurfaceShader, Vec3,
+    ShadingContext, ShadingFloat, SurfaceOutput, SurfaceShader, SurfaceVisitor, Vec3,
 };
 use glam::Vec3A;
 
@@ -461,6 +461,12 @@ where
 }
 
 /// One masked pass of the surface shader of lane `first` over the lanes of `group`.
+///
+/// The pass is one function per concrete shader type ([`SurfaceShader::visit`]): for a closed
+/// set of shaders the `match` picks it, and gathering the globals, the shader and the
+/// compositing are compiled together — the globals the shader does not read are never
+/// gathered, and those it reads stay in registers instead of crossing a call in memory, as in
+/// a hand-written packet kernel.
 #[inline(always)]
 fn shade_group<F, S, L>(tracer: Tracer<'_, S, L>, lanes: &Lanes<'_>, group: u32, first: usize, depth: Depth) -> Color<F>
 where
@@ -469,12 +475,31 @@ where
     L: LightShader,
 {
     let shader = &tracer.scene.surfaces[lanes.hits[first].surface as usize];
-    let mask = lane_mask::<F>(group);
-    let read = shader.globals_read();
-    let mut ctx = SceneContext { globals: gather_globals_read::<F>(lanes.hits, group, first, read), tracer, depth };
-    let mut e = Exec::with_mask(mask);
-    let out = shader.shade(&mut ctx, &mut e);
-    composite::<F, S, L>(tracer, lanes, group, depth, out)
+    shader.visit(GroupPass::<F, S, L> { tracer, lanes, group, first, depth, _f: core::marker::PhantomData })
+}
+
+/// [`shade_group`]'s pass, run on the concrete shader.
+struct GroupPass<'a, 'p, F, S, L> {
+    tracer: Tracer<'a, S, L>,
+    lanes: &'a Lanes<'p>,
+    group: u32,
+    first: usize,
+    depth: Depth,
+    _f: core::marker::PhantomData<F>,
+}
+
+impl<F: ShadingFloat, S: SurfaceShader, L: LightShader> SurfaceVisitor for GroupPass<'_, '_, F, S, L> {
+    type Output = Color<F>;
+
+    #[inline(never)]
+    fn visit<T: SurfaceShader>(self, shader: &T) -> Color<F> {
+        let Self { tracer, lanes, group, first, depth, .. } = self;
+        let read = shader.globals_read();
+        let mut ctx = SceneContext { globals: gather_globals_read::<F>(lanes.hits, group, first, read), tracer, depth };
+        let mut e = Exec::with_mask(lane_mask::<F>(group));
+        let out = shader.shade(&mut ctx, &mut e);
+        composite::<F, S, L>(tracer, lanes, group, depth, out)
+    }
 }
 
 /// `Ci` of the lanes of `group`, with what lies behind composited where `Oi < 1`.

@@ -136,6 +136,16 @@ const FAR_SCALE: f32 = 1.0 + 2.0 * (3.0 * f32::EPSILON * 0.5) / (1.0 - 3.0 * f32
 /// of `t` along that axis, far below any box.
 const MIN_DIR: f32 = 1e-30;
 
+/// What a leaf triangle did to the rays of a walk.
+enum Visit {
+    /// Nothing.
+    Missed,
+    /// Shortened some ray's interval.
+    Shortened,
+    /// Ended the walk (every ray is answered).
+    Done,
+}
+
 /// The rays of a packet in the lanes of `W`, prepared for traversal.
 struct Lanes<W> {
     o: [W; 3],
@@ -167,9 +177,10 @@ impl<W: RayLanes> Lanes<W> {
         W::from_fn(|i| if (rays.active >> i) & 1 != 0 { rays.tmax[i] } else { f32::NEG_INFINITY })
     }
 
-    /// The lanes whose ray overlaps `node`'s box within `(tmin, tfar)`.
+    /// The lanes whose ray overlaps `node`'s box within `(tmin, tfar)` (bits), and where
+    /// each ray enters it.
     #[inline(always)]
-    fn enter(&self, node: &Node, tfar: W) -> u32 {
+    fn enter(&self, node: &Node, tfar: W) -> (u32, W) {
         let slab = |k: usize| {
             let a = (W::splat(node.min[k]) - self.o[k]) * self.inv[k];
             let b = (W::splat(node.max[k]) - self.o[k]) * self.inv[k];
@@ -178,7 +189,7 @@ impl<W: RayLanes> Lanes<W> {
         let ((nx, fx), (ny, fy), (nz, fz)) = (slab(0), slab(1), slab(2));
         let near = nx.max_or(ny).max_or(nz.max_or(self.tmin));
         let far = fx.min_or(fy).min_or(fz.min_or(tfar)) * W::splat(FAR_SCALE);
-        W::bits(near.le(far))
+        (W::bits(near.le(far)), near)
     }
 }
 
@@ -231,56 +242,77 @@ impl PacketBvh {
         }
     }
 
-    /// Pushes the children of inner node `node` onto the stack, the one the rays of `lanes`
-    /// (bits) meet first on top: judged by the first of them, along the axis the two
-    /// children's centres are furthest apart.
+    /// Walks the tree for the rays of `lanes` with interval ends `far`: every leaf triangle
+    /// whose node some ray enters goes to `visit(triangle, &mut far)`, which may shorten the
+    /// intervals and says what it did. Both children of an inner node are tested
+    /// at once; the one most rays enter first is walked first, the other waits on the stack
+    /// and is tested again when popped if the intervals have shortened since.
     #[inline(always)]
-    fn push_children(
-        &self,
-        node: &Node,
-        dirs: &[Vec3A; MAX_PACKET],
-        lanes: u32,
-        stack: &mut [u32; STACK],
-        sp: &mut usize,
-    ) {
-        let (a, b) = (&self.nodes[node.first as usize], &self.nodes[node.first as usize + 1]);
-        let centre = |n: &Node| Vec3A::from_array(n.min) + Vec3A::from_array(n.max);
-        let d = dirs[lanes.trailing_zeros() as usize];
-        let b_first = (centre(b) - centre(a)).dot(d) < 0.0;
-        let (near, far) = if b_first { (node.first + 1, node.first) } else { (node.first, node.first + 1) };
-        stack[*sp] = far;
-        stack[*sp + 1] = near;
-        *sp += 2;
+    fn walk<W: RayLanes>(&self, lanes: &Lanes<W>, mut far: W, mut visit: impl FnMut(&PackedTri, &mut W) -> Visit) {
+        // Stack entries: a node whose box some ray entered, and the `epoch` it was tested in.
+        let mut stack = [(0u32, 0u32); STACK];
+        let mut sp = 0;
+        let mut epoch = 0u32;
+        if lanes.enter(&self.nodes[0], far).0 == 0 {
+            return;
+        }
+        let mut node = 0u32;
+        loop {
+            let n = &self.nodes[node as usize];
+            if n.count == 0 {
+                let (ia, ib) = (n.first, n.first + 1);
+                let (ma, near_a) = lanes.enter(&self.nodes[ia as usize], far);
+                let (mb, near_b) = lanes.enter(&self.nodes[ib as usize], far);
+                if ma != 0 && mb != 0 {
+                    let both = ma & mb;
+                    let a_first = (W::bits(near_a.le(near_b)) & both).count_ones() * 2 >= both.count_ones();
+                    let (first, second) = if a_first { (ia, ib) } else { (ib, ia) };
+                    stack[sp] = (second, epoch);
+                    sp += 1;
+                    node = first;
+                    continue;
+                }
+                if ma | mb != 0 {
+                    node = if ma != 0 { ia } else { ib };
+                    continue;
+                }
+            } else {
+                for slot in n.first..n.first + n.count {
+                    match visit(&self.tris[slot as usize], &mut far) {
+                        Visit::Missed => {}
+                        Visit::Shortened => epoch += 1,
+                        Visit::Done => return,
+                    }
+                }
+            }
+            // Next: the nearest waiting node some ray still enters.
+            loop {
+                if sp == 0 {
+                    return;
+                }
+                sp -= 1;
+                let (next, tested) = stack[sp];
+                if tested == epoch || lanes.enter(&self.nodes[next as usize], far).0 != 0 {
+                    node = next;
+                    break;
+                }
+            }
+        }
     }
 
     #[inline(always)]
     fn closest<W: RayLanes>(&self, rays: &RayPacket, out: &mut [Hit; MAX_PACKET]) -> u32 {
         let lanes = Lanes::<W>::new(rays);
-        let mut t_best = Lanes::<W>::far(rays);
         let (mut b1_best, mut b2_best) = (W::splat(0.0), W::splat(0.0));
+        let mut t_best = W::splat(0.0);
         let mut prim = [u32::MAX; MAX_PACKET];
         let mut found = 0u32;
-        let mut stack = [0u32; STACK];
-        let mut sp = 1;
-        while sp > 0 {
-            sp -= 1;
-            let node = &self.nodes[stack[sp] as usize];
-            let live = lanes.enter(node, t_best);
-            if live == 0 {
-                continue;
-            }
-            if node.count == 0 {
-                self.push_children(node, &rays.dirs, live, &mut stack, &mut sp);
-                continue;
-            }
-            for slot in node.first..node.first + node.count {
-                let tri = &self.tris[slot as usize];
-                let (hit, t, b1, b2) = tri_test(tri, lanes.o, lanes.d, lanes.tmin, t_best);
-                let bits = W::bits(hit);
-                if bits == 0 {
-                    continue;
-                }
-                t_best = W::select(hit, t, t_best);
+        self.walk(&lanes, Lanes::<W>::far(rays), |tri, far| {
+            let (hit, t, b1, b2) = tri_test(tri, lanes.o, lanes.d, lanes.tmin, *far);
+            let bits = W::bits(hit);
+            if bits != 0 {
+                *far = W::select(hit, t, *far);
+                t_best = *far;
                 b1_best = W::select(hit, b1, b1_best);
                 b2_best = W::select(hit, b2, b2_best);
                 found |= bits;
@@ -289,8 +321,11 @@ impl PacketBvh {
                     prim[rest.trailing_zeros() as usize] = tri.prim;
                     rest &= rest - 1;
                 }
+                Visit::Shortened
+            } else {
+                Visit::Missed
             }
-        }
+        });
         let mut rest = found;
         while rest != 0 {
             let i = rest.trailing_zeros() as usize;
@@ -303,35 +338,20 @@ impl PacketBvh {
     #[inline(always)]
     fn any_hit<W: RayLanes>(&self, rays: &RayPacket) -> u32 {
         let lanes = Lanes::<W>::new(rays);
-        let tmax = Lanes::<W>::far(rays);
         let mut blocked = 0u32;
-        let mut far = tmax;
-        let mut stack = [0u32; STACK];
-        let mut sp = 1;
-        while sp > 0 {
-            sp -= 1;
-            let node = &self.nodes[stack[sp] as usize];
-            let live = lanes.enter(node, far);
-            if live == 0 {
-                continue;
+        self.walk(&lanes, Lanes::<W>::far(rays), |tri, far| {
+            let bits = W::bits(tri_test(tri, lanes.o, lanes.d, lanes.tmin, *far).0);
+            if bits == 0 {
+                return Visit::Missed;
             }
-            if node.count == 0 {
-                self.push_children(node, &rays.dirs, live, &mut stack, &mut sp);
-                continue;
+            blocked |= bits;
+            if blocked == rays.active {
+                return Visit::Done;
             }
-            for slot in node.first..node.first + node.count {
-                let (hit, _, _, _) = tri_test(&self.tris[slot as usize], lanes.o, lanes.d, lanes.tmin, far);
-                let bits = W::bits(hit);
-                if bits != 0 {
-                    blocked |= bits;
-                    if blocked == rays.active {
-                        return blocked;
-                    }
-                    // A blocked ray is done: an empty interval keeps it out of every box.
-                    far = W::from_fn(|i| if (blocked >> i) & 1 != 0 { f32::NEG_INFINITY } else { far.lane(i) });
-                }
-            }
-        }
+            // A blocked ray is done: an empty interval keeps it out of every box.
+            *far = W::from_fn(|i| if (blocked >> i) & 1 != 0 { f32::NEG_INFINITY } else { far.lane(i) });
+            Visit::Shortened
+        });
         blocked
     }
 }
