@@ -114,6 +114,9 @@ enum BenchCommand {
         /// Timed runs per row (medians reported).
         #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u32).range(1..=1000))]
         runs: u32,
+        /// Only these shaders (repeatable; default: all ten).
+        #[arg(long = "shader")]
+        shaders: Vec<String>,
     },
     /// The batched interpreter's points/s at batch sizes 1, 16, 256, 4096 against compiled
     /// Rust f32 and f32x8, with max abs error against f64, on the Table-1 `.sl` shaders.
@@ -290,8 +293,8 @@ fn main() -> ExitCode {
             BenchCommand::Kernels { json, points, runs, shaders, instantiations } => {
                 bench_kernels(kernels::KernelOpts { points, runs, shaders, instantiations }, json)
             }
-            BenchCommand::Table1 { threads, json, size, runs } => bench_table1(
-                &table1::Table1Opts { size, runs: runs as usize, threads: threads.map_or(0, |t| t as usize) },
+            BenchCommand::Table1 { threads, json, size, runs, shaders } => bench_table1(
+                &table1::Table1Opts { size, runs: runs as usize, threads: threads.map_or(0, |t| t as usize), shaders },
                 json,
             ),
             BenchCommand::Workload { threads, json, runs, shaders, systems } => bench_workload(
@@ -323,5 +326,5 @@ fn main() -> ExitCode {
 
 fn demo(out: &std::path::Path) -> Result<(), String> {
     let pb = progress_bar(std::io::IsTerminal::is_terminal(&std::io::stderr()));
-    demo::run(out, &table1::Table1Opts { size: 256, runs: 1, threads: 1 }, &pb)
+    demo::run(out, &table1::Table1Opts { size: 256, runs: 1, threads: 1, shaders: Vec::new() }, &pb)
 }

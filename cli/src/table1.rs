@@ -57,6 +57,8 @@ pub struct Table1Opts {
     pub runs: usize,
     /// Worker threads (0 = all).
     pub threads: usize,
+    /// Only these shaders (Table-1 names; empty: all ten).
+    pub shaders: Vec<String>,
 }
 
 /// The variants in table order.
@@ -106,9 +108,19 @@ pub fn run(opts: &Table1Opts, pb: &ProgressBar) -> Result<Vec<Table1Row>, String
     let ropts = RenderOptions { threads: opts.threads, shadows: false, derivatives: false, ..RenderOptions::default() };
     let runs = opts.runs.max(1);
     let mut rows = Vec::new();
-    pb.set_length((Surface::NAMES.len() * (4 * runs + 1) + 2 * runs) as u64);
-    for name in Surface::NAMES {
-        pb.set_message(name);
+    let names: Vec<&str> = if opts.shaders.is_empty() {
+        Surface::NAMES.to_vec()
+    } else {
+        opts.shaders.iter().map(String::as_str).collect()
+    };
+    for name in &names {
+        if Surface::by_name(name).is_none() {
+            return Err(format!("unknown shader '{name}' (choices: {})", Surface::NAMES.join(", ")));
+        }
+    }
+    pb.set_length((names.len() * (5 * runs + 1)) as u64);
+    for name in names {
+        pb.set_message(name.to_string());
         let surface = Surface::by_name(name).ok_or_else(|| format!("unknown shader {name}"))?;
         let has_native = matches!(surface, Surface::Plastic(_) | Surface::Checker(_));
         let scene: Scene<Surface, Light> = scenes::table1(surface, lights.clone(), opts.size);

@@ -27,7 +27,9 @@ pub struct PacketStats {
     /// Wall-clock time of the whole render.
     pub total: Duration,
     /// Time inside shading (summed over threads): gathering globals, running the shaders
-    /// and everything they call (shadow and secondary rays included).
+    /// and everything they call (shadow and secondary rays included), timed per packet with
+    /// the cost of reading the clock taken out (packets that hit nothing under a hidden sky
+    /// need no shading and are not timed).
     pub shading: Duration,
     /// Camera-ray hits shaded.
     pub shaded_points: u64,
@@ -149,6 +151,26 @@ fn ticks() -> u64 {
     }
 }
 
+/// What reading [`ticks`] adds to an interval it measures: the median difference of two
+/// readings back to back, measured once per process. Each timed packet's interval has it
+/// subtracted — it would otherwise count against small packets (on the virtual machines of
+/// these benchmarks a reading costs ~12 ns, a quarter of shading a 4-point packet of a
+/// simple shader) and more against narrow widths, which time more packets per pixel.
+fn reading_cost() -> u64 {
+    use std::sync::OnceLock;
+    static COST: OnceLock<u64> = OnceLock::new();
+    *COST.get_or_init(|| {
+        let mut d: Vec<u64> = (0..2001)
+            .map(|_| {
+                let t = ticks();
+                ticks().wrapping_sub(t)
+            })
+            .collect();
+        d.sort_unstable();
+        d[d.len() / 2]
+    })
+}
+
 /// Runs `render` with counters for shading time (in [`ticks`]) and points; the ticks are
 /// converted to time by the ratio of ticks to wall-clock time over the whole render.
 fn measured(render: impl FnOnce(Option<(&AtomicU64, &AtomicU64)>) -> Image) -> (Image, PacketStats) {
@@ -220,6 +242,7 @@ where
         let mut dirs = [Vec3A::Z; MAX_LANES];
         let mut out = [[0.0f32; MAX_LANES]; 3];
         let (mut band_ticks, mut band_points) = (0u64, 0u64);
+        let tick_cost = if stats.is_some() { reading_cost() } else { 0 };
         for by in (0..rows).step_by(bh as usize) {
             for bx in (0..width).step_by(bw as usize) {
                 let lane_pixel = |lane: usize| (bx + lane as u32 % bw, by + lane as u32 / bw);
@@ -249,6 +272,11 @@ where
                     for lane in (0..packet_lanes).filter(|lane| (hit >> lane) & 1 != 0) {
                         hits[lane] = scene.surface_hit(&found[lane], o, dirs[lane], Some(differentials[lane]));
                     }
+                    // A packet that hit nothing shows black where the sky is hidden from the
+                    // camera: nothing to shade.
+                    if hit == 0 && !scene.sky.visible_to_camera {
+                        continue;
+                    }
                     // Shade it, F::LANES lanes at a time.
                     let clock = stats.map(|_| ticks());
                     for base in (0..packet_lanes).step_by(F::LANES) {
@@ -269,7 +297,7 @@ where
                         c.b.store(&mut out[2][base..]);
                     }
                     if let Some(t) = clock {
-                        band_ticks += ticks().wrapping_sub(t);
+                        band_ticks += ticks().wrapping_sub(t).saturating_sub(tick_cost);
                         band_points += u64::from(hit.count_ones());
                     }
                     for lane in 0..packet_lanes {
