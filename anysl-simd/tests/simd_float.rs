@@ -537,6 +537,34 @@ fn pow_family<F: Lanes>() -> [(&'static str, Stats); 1] {
     [("pow", st)]
 }
 
+/// Results at the bottom of the subnormal range, bit for bit: `exp2` across the point
+/// where its result rounds to +0 (each lane alone and beside normal lanes) and `pow` of ±0.
+fn underflow_bits<F: Lanes>() {
+    let xs: Vec<f32> = (-152 * 256..=-147 * 256).map(|i| i as f32 / 256.0).collect();
+    for chunk in xs.chunks(F::LANES) {
+        let mut lanes = vec![1.0f32; F::LANES];
+        lanes[..chunk.len()].copy_from_slice(chunk);
+        let got = F::load(&lanes).exp2();
+        for (i, x) in chunk.iter().enumerate() {
+            assert_eq!((got.lane(i) as f32).to_bits(), x.exp2().to_bits(), "exp2({x}) in {}", F::NAME);
+        }
+        // The same argument in every lane but the first, beside a normal one.
+        for x in chunk {
+            let mut mixed = vec![*x; F::LANES];
+            mixed[0] = 0.5;
+            let got = F::load(&mixed).exp2();
+            assert_eq!((got.lane(F::LANES - 1) as f32).to_bits(), x.exp2().to_bits(), "exp2({x}) beside 0.5");
+            assert_eq!((got.lane(0) as f32).to_bits(), 0.5f32.exp2().to_bits());
+        }
+    }
+    for (x, y) in [(0.0f32, 12.5f32), (0.0, 1000.0), (0.0, 0.5), (-0.0, 3.0), (-0.0, 12.5), (1e-30, 6.0), (0.3, 100.0)] {
+        let got = F::pow(F::c(f64::from(x)), F::c(f64::from(y)));
+        for i in 0..F::LANES {
+            assert_eq!((got.lane(i) as f32).to_bits(), x.powf(y).to_bits(), "pow({x}, {y}) in {}", F::NAME);
+        }
+    }
+}
+
 fn trig_family<F: Lanes>() -> [(&'static str, Stats); 7] {
     let mut rng = Rng::new(30);
     let mut trig_in = unary_inputs(31, &[(-10.0, 10.0), (-1e4, 1e4), (-6e5, 6e5)]);
@@ -604,6 +632,10 @@ macro_rules! width_tests {
                 for (name, st) in pow_family::<F>() {
                     report(F::NAME, name, st);
                 }
+            }
+            #[test]
+            fn underflow_to_zero_bit_for_bit() {
+                underflow_bits::<F>();
             }
             #[test]
             fn trig_accuracy() {
