@@ -13,6 +13,7 @@
 //! branches; loops carry a live mask with break/continue masks per level; `return` collects
 //! lanes per inlined frame; stores into varying variables blend with the mask.
 
+mod math;
 mod noise;
 
 use crate::abi::{self, host, GLOBAL_ORDER};
@@ -720,7 +721,11 @@ impl<'c, 'm> Cg<'c, 'm> {
 
     /// Calls runtime function `kind` with `aux`; `n_out` output values. Uniform when every
     /// argument is uniform and `force_varying` is false.
+    /// Transcendentals of varying vectors are emitted inline instead ([`math`]).
     fn rt_call(&mut self, kind: RtKind, aux: u32, args: &[S<'c>], n_out: usize, force_varying: bool) -> Vec<S<'c>> {
+        if let Some(r) = math::MathFn::of(kind, aux).and_then(|f| self.math_inline(f, args)) {
+            return vec![r];
+        }
         let uni = !force_varying && args.iter().all(|a| a.r == Repr::U);
         let addr = if uni { (self.rt_u)(kind, aux) } else { (self.rt_v)(kind, aux) };
         let fnp = self.const_fn_ptr(addr);

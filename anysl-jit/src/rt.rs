@@ -242,6 +242,25 @@ unsafe fn un_op<F: JitFloat>(inp: *const f32, out: *mut f32, aux: u32) {
     Out::<F>::new(out).f(r);
 }
 
+/// std's `f32` sine, cosine or tangent (`aux & 0xff`: [`un::SIN`], [`un::COS`], [`un::TAN`])
+/// of the lanes that `mask` selects, out of `aux >> 8` lanes (the others are copied): the path
+/// of the inline trigonometry for arguments beyond the vector reduction's range, as the
+/// SIMD types take it.
+///
+/// # Safety
+/// `mask`, `inp` and `out` each hold `aux >> 8` lanes.
+pub unsafe extern "C" fn rt_trig_lanes(_: *mut c_void, mask: *const u32, inp: *const f32, out: *mut f32, aux: u32) {
+    let f: fn(f32) -> f32 = match aux & 0xff {
+        un::SIN => f32::sin,
+        un::COS => f32::cos,
+        _ => f32::tan,
+    };
+    for i in 0..(aux >> 8) as usize {
+        let x = *inp.add(i);
+        *out.add(i) = if *mask.add(i) != 0 { f(x) } else { x };
+    }
+}
+
 rt_family!(
     /// Binary and ternary math on floats.
     rt_bin, rt_bin_k, bin_op
