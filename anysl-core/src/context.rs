@@ -289,6 +289,85 @@ pub struct LightOutput<F: ShadingFloat> {
     pub emission: Emission,
 }
 
+/// Which light shader a [`LightData`] stands for.
+#[repr(u32)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LightKind {
+    /// `ambientlight`: `Cl = cl`, seen by `ambient()` only.
+    Ambient = 0,
+    /// `pointlight`: `L = ps - pos`, `Cl = cl` with the distance falloff of [`Falloff`].
+    Point = 1,
+    /// `distantlight`: `L = pos` (the direction the light travels), `Cl = cl`.
+    Distant = 2,
+}
+
+/// The distance falloff of a point light described as data.
+#[repr(u32)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Falloff {
+    /// `Cl = cl`.
+    None = 0,
+    /// `Cl = cl / (L·L)`.
+    InverseSquare = 1,
+}
+
+/// A light as plain numbers, for code that runs the built-in light loops (`ambient`,
+/// `diffuse`, `specular`) itself instead of calling [`ShadingContext::illuminance`] — the
+/// JIT compiles them into the shader. `#[repr(C)]`: compiled code reads it in place. The
+/// numbers are what the light shader computes before its first lane-wise operation, rounded
+/// to `f32` as the `f32`-based float types round them, so for those types
+/// [`LightData::light`] is the shader's `light` bit for bit.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LightData {
+    /// The light shader.
+    pub kind: LightKind,
+    /// Point lights: how `Cl` falls off with distance.
+    pub falloff: Falloff,
+    /// Point lights: the position; distant lights: the direction of travel.
+    pub pos: [f32; 3],
+    /// The colour times the intensity.
+    pub cl: [f32; 3],
+}
+
+impl LightData {
+    /// What the light shader computes for the points `ps`.
+    #[inline(always)]
+    #[must_use]
+    pub fn light<F: ShadingFloat>(&self, ps: Vec3<F>) -> LightOutput<F> {
+        let v = |a: [f32; 3]| Vec3::new(F::c(f64::from(a[0])), F::c(f64::from(a[1])), F::c(f64::from(a[2])));
+        let c = v(self.cl).to_color();
+        match self.kind {
+            LightKind::Ambient => {
+                LightOutput { cl: c, l: Vec3::zero(), lit: F::Mask::splat(true), emission: Emission::Ambient }
+            }
+            LightKind::Distant => {
+                let (l, lit) = solar(v(self.pos));
+                LightOutput { cl: c, l, lit, emission: Emission::Distant }
+            }
+            LightKind::Point => {
+                let (l, lit) = illuminate(ps, v(self.pos), None);
+                let cl = match self.falloff {
+                    Falloff::None => c,
+                    Falloff::InverseSquare => c / l.dot(l),
+                };
+                LightOutput { cl, l, lit, emission: Emission::Local }
+            }
+        }
+    }
+}
+
+/// Most lights a [`PointContext`] describes as data (with more, it describes none).
+pub const MAX_DATA_LIGHTS: usize = 8;
+
+/// The lights of a [`PointContext`] as data, for the slice they were made from.
+#[derive(Clone, Copy)]
+struct LightTable {
+    from: (usize, usize),
+    len: usize,
+    data: [LightData; MAX_DATA_LIGHTS],
+}
+
 /// RSL `illuminate(from [, axis, angle])`: `L = ps - from`, and the lanes inside the cone
 /// of half-angle `angle` around `axis`.
 #[inline(always)]
@@ -373,6 +452,16 @@ pub trait ShadingContext<F: ShadingFloat> {
 
     /// RSL `trace(p, dir)`: the colour seen along a ray, for the live lanes.
     fn trace(&mut self, e: &Exec<F>, p: Vec3<F>, dir: Vec3<F>) -> Color<F>;
+
+    /// The lights as data, when this context can describe them so: then
+    /// `illuminance("", p, cone, body)` is [`run_illuminance`] with each light evaluated by
+    /// [`LightData::light`] and no shadowing, and `ambient()` is [`sum_ambient`] over them — so code that
+    /// runs those loops itself (the JIT) computes what the context would. `None` (the
+    /// default): the context's own light loops must be called.
+    #[inline(always)]
+    fn lights_as_data(&self) -> Option<&[LightData]> {
+        None
+    }
 }
 
 /// The light loop every context shares: evaluates each light shader at `p`, keeps the lanes
@@ -464,6 +553,9 @@ pub struct PointContext<'a, F: ShadingFloat, L> {
     pub horizon: Color<F>,
     /// See `horizon`.
     pub zenith: Color<F>,
+    /// `lights` as data, made on the first [`ShadingContext::lights_as_data`] (and for the
+    /// slice it was made from: after `lights` is replaced, the context describes none).
+    data: core::cell::OnceCell<Option<LightTable>>,
 }
 
 impl<'a, F: ShadingFloat, L: LightShader> PointContext<'a, F, L> {
@@ -471,8 +563,29 @@ impl<'a, F: ShadingFloat, L: LightShader> PointContext<'a, F, L> {
     #[inline(always)]
     #[must_use]
     pub fn new(globals: Globals<F>, lights: &'a [L]) -> Self {
-        Self { globals, lights, horizon: Color::c(0.6, 0.6, 0.6), zenith: Color::c(0.2, 0.3, 0.8) }
+        Self {
+            globals,
+            lights,
+            horizon: Color::c(0.6, 0.6, 0.6),
+            zenith: Color::c(0.2, 0.3, 0.8),
+            data: core::cell::OnceCell::new(),
+        }
     }
+}
+
+/// `lights` as data, when every one of them (at most [`MAX_DATA_LIGHTS`]) has a description.
+#[cold]
+fn light_table<L: LightShader>(lights: &[L]) -> Option<LightTable> {
+    if lights.len() > MAX_DATA_LIGHTS {
+        return None;
+    }
+    let none = LightData { kind: LightKind::Ambient, falloff: Falloff::None, pos: [0.0; 3], cl: [0.0; 3] };
+    let mut t =
+        LightTable { from: (lights.as_ptr() as usize, lights.len()), len: lights.len(), data: [none; MAX_DATA_LIGHTS] };
+    for (d, l) in t.data.iter_mut().zip(lights) {
+        *d = l.data()?;
+    }
+    Some(t)
 }
 
 impl<F: ShadingFloat, L: LightShader> ShadingContext<F> for PointContext<'_, F, L> {
@@ -503,5 +616,12 @@ impl<F: ShadingFloat, L: LightShader> ShadingContext<F> for PointContext<'_, F, 
         let d = dir.normalize();
         let t = d.y.abs().min(F::c(1.0));
         self.horizon + (self.zenith - self.horizon) * t
+    }
+
+    /// Lights without shadows: described as data when each of them is.
+    #[inline]
+    fn lights_as_data(&self) -> Option<&[LightData]> {
+        let t = self.data.get_or_init(|| light_table(self.lights)).as_ref()?;
+        (t.from == (self.lights.as_ptr() as usize, self.lights.len())).then(|| &t.data[..t.len])
     }
 }

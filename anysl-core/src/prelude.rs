@@ -1,6 +1,8 @@
 //! Everything a shader needs in scope: `use anysl_core::prelude::*;`.
 
-pub use crate::context::{illuminate, solar, Emission, Globals, LightOutput, ShadingContext, SurfaceOutput};
+pub use crate::context::{
+    illuminate, solar, Emission, Falloff, Globals, LightData, LightKind, LightOutput, ShadingContext, SurfaceOutput,
+};
 pub use crate::exec::Exec;
 pub use crate::float::{Blend, LatticeBits, Mask, PureFn, ShadingFloat};
 pub use crate::shader::{DisplacementShader, LightShader, Shader, SurfaceShader};

@@ -1,7 +1,7 @@
 //! Shader traits and parameter metadata (name, type, default, uniform/varying, output), with
 //! setting parameters by name — the same for shaders written in Rust and loaded from `.sl`.
 
-use crate::context::{Emission, LightOutput, ShadingContext, SurfaceOutput};
+use crate::context::{Emission, LightData, LightOutput, ShadingContext, SurfaceOutput};
 use crate::exec::Exec;
 use crate::float::ShadingFloat;
 use crate::vec::Vec3;
@@ -372,6 +372,13 @@ pub trait LightShader: Shader {
     #[inline(always)]
     fn category(&self) -> &str {
         ""
+    }
+
+    /// The light as data ([`LightData`]: what its `light` computes, for the `f32`-based float
+    /// types bit for bit), when it is one of the kinds data can describe; `None` otherwise.
+    #[inline(always)]
+    fn data(&self) -> Option<LightData> {
+        None
     }
 }
 

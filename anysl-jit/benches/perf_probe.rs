@@ -1,5 +1,5 @@
 //! Rough timings for iterating on the JIT without building the CLI (`anysl bench jit` is the
-//! benchmark): `cargo bench -p anysl-jit --bench perf_probe -- probe|overhead|spin_x8|dump_ir`.
+//! benchmark): `cargo bench -p anysl-jit --bench perf_probe -- probe|overhead|spin_x8|dump_ir|compile`.
 
 use anysl_core::points::{shade_points, PointSet, ShadeOut};
 use anysl_jit::{compile, JitOptions, JitShader, Variant};
@@ -47,6 +47,68 @@ fn probe() {
             j / a
         );
     }
+}
+
+/// Cold compile time of each Table-1 shader at x8 (`VARIANT=f32|x4|x16` for another): the
+/// median of 9 compiles per stage, and the LLVM instruction counts.
+fn compile_times() {
+    let variant = match std::env::var("VARIANT").as_deref() {
+        Ok("f32") => Variant::F32,
+        Ok("x4") => Variant::X4,
+        Ok("x16") => Variant::X16,
+        _ => Variant::X8,
+    };
+    let opts = JitOptions::default();
+    for name in [
+        "constant", "plastic", "checker", "brick", "wood", "granite", "parquet", "screen", "starball", "venus", "glass",
+    ] {
+        let mut path = rsl_dir().join(format!("{name}.sl"));
+        if !path.exists() {
+            path = rsl_dir().join("standard").join(format!("{name}.sl"));
+        }
+        let jit = JitShader::from_file(&path, &[rsl_dir().join("include")], opts.clone()).unwrap();
+        let mut cpu = Vec::new();
+        let mut runs: Vec<anysl_jit::CompiledShader> = (0..9)
+            .map(|_| {
+                let t = thread_cpu_ms();
+                let c = compile(&jit.module, &jit.values, variant, &opts).unwrap();
+                cpu.push(thread_cpu_ms() - t);
+                c
+            })
+            .collect();
+        cpu.sort_by(f64::total_cmp);
+        let median = |f: &dyn Fn(&anysl_jit::CompiledShader) -> f64, runs: &mut Vec<anysl_jit::CompiledShader>| {
+            runs.sort_by(|a, b| f(a).total_cmp(&f(b)));
+            f(&runs[runs.len() / 2])
+        };
+        let stages: Vec<String> = ["llvm-irgen", "optimize", "codegen"]
+            .iter()
+            .map(|st| {
+                let t = median(&|c| c.stats.times_ms.iter().find(|(n, _)| n == st).map_or(0.0, |x| x.1), &mut runs);
+                format!("{st}={t:.1}")
+            })
+            .collect();
+        let total = median(&|c| c.stats.total_ms(), &mut runs);
+        let insts: Vec<usize> =
+            runs[0].stats.insts.iter().filter(|(s, _)| s.starts_with("llvm")).map(|(_, n)| *n).collect();
+        eprintln!(
+            "{name:10} {:?} compile {total:6.1} ms (cpu {:6.1}) {stages:?} llvm insts {insts:?}",
+            variant, cpu[4]
+        );
+    }
+}
+
+/// CPU time of this thread in milliseconds (Linux `CLOCK_THREAD_CPUTIME_ID`): compile times
+/// that other processes on the machine do not inflate.
+fn thread_cpu_ms() -> f64 {
+    extern "C" {
+        fn clock_gettime(clock: i32, ts: *mut [i64; 2]) -> i32;
+    }
+    const CLOCK_THREAD_CPUTIME_ID: i32 = 3;
+    let mut ts = [0i64; 2];
+    // SAFETY: `ts` is a `struct timespec` (two 64-bit fields on x86-64 Linux).
+    unsafe { clock_gettime(CLOCK_THREAD_CPUTIME_ID, &mut ts) };
+    ts[0] as f64 * 1e3 + ts[1] as f64 * 1e-6
 }
 
 fn dump_ir() {
@@ -142,8 +204,9 @@ fn main() {
         "overhead" => overhead(),
         "spin_x8" => spin_x8(),
         "dump_ir" => dump_ir(),
+        "compile" => compile_times(),
         other => {
-            eprintln!("perf_probe: unknown probe `{other}` (choices: probe, overhead, spin_x8, dump_ir)");
+            eprintln!("perf_probe: unknown probe `{other}` (choices: probe, overhead, spin_x8, dump_ir, compile)");
             std::process::exit(2);
         }
     }

@@ -13,6 +13,8 @@
 //! branches; loops carry a live mask with break/continue masks per level; `return` collects
 //! lanes per inlined frame; stores into varying variables blend with the mask.
 
+mod lights;
+mod math;
 mod noise;
 
 use crate::abi::{self, host, GLOBAL_ORDER};
@@ -153,9 +155,20 @@ pub struct Cg<'c, 'm> {
     pub layout: abi::GlobalsLayout,
     /// The light sums of the last `specular` call ([`Cg::lit_call`]).
     lit: Option<LitMemo<'c>>,
+    /// Where the normal of the kept sums came from ([`Cg::normal_key`]), and the mask slot
+    /// and [`Cg::mask_stores`] count they were computed under.
+    lit_key: Option<(Option<NormalKey>, PointerValue<'c>, u32)>,
+    /// Mask stores generated so far.
+    mask_stores: std::cell::Cell<u32>,
+    /// Stores generated into each slot so far (a load of a slot between two calls with the
+    /// same count reads the same value).
+    slot_stores: Vec<std::cell::Cell<u32>>,
     /// `ambient()` calls followed by a `diffuse(N)` under the same mask whose normal is
     /// known at the `ambient()` call ([`ambient_partners`]).
     amb_partner: HashMap<u32, NormalSrc>,
+    /// Light calls made now call the renderer even when the context describes its lights
+    /// as data ([`Cg::light_call`]).
+    lights_by_renderer: bool,
 }
 
 /// Where the normal of the `diffuse(N)` that follows an `ambient()` call can be read at the
@@ -226,6 +239,16 @@ fn ambient_partners(func: &Function) -> HashMap<u32, NormalSrc> {
     out
 }
 
+/// Where a light call's normal comes from, as far as the code generator can tell: the same
+/// key at two calls means the same normal (the kept sums are tried only then).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum NormalKey {
+    /// An IR value.
+    Value(Value),
+    /// A slot, with the number of stores into it generated before the load.
+    Slot(SlotId, u32),
+}
+
 /// What a `specular` call left for the `diffuse` and `ambient` calls after it: its light loop
 /// also summed `diffuse(N)` and, when the shader calls `ambient()`, the ambient light, under
 /// the same mask. Kept in stack slots of the function that made the call; a later call
@@ -272,7 +295,11 @@ impl<'c, 'm> Cg<'c, 'm> {
             rt_u,
             body_count: 0,
             lit: None,
+            lit_key: None,
+            mask_stores: std::cell::Cell::new(0),
+            slot_stores: vec![std::cell::Cell::new(0); func.slots.len()],
             amb_partner: ambient_partners(func),
+            lights_by_renderer: false,
             shapes: HashMap::new(),
             fn_attrs: Vec::new(),
             threaded_fns: 0,
@@ -720,7 +747,23 @@ impl<'c, 'm> Cg<'c, 'm> {
 
     /// Calls runtime function `kind` with `aux`; `n_out` output values. Uniform when every
     /// argument is uniform and `force_varying` is false.
+    /// Transcendentals of varying vectors are emitted inline instead ([`math`]).
     fn rt_call(&mut self, kind: RtKind, aux: u32, args: &[S<'c>], n_out: usize, force_varying: bool) -> Vec<S<'c>> {
+        if let Some(r) = math::MathFn::of(kind, aux).and_then(|f| self.math_inline(f, args)) {
+            return vec![r];
+        }
+        self.rt_call_library(kind, aux, args, n_out, force_varying)
+    }
+
+    /// [`Cg::rt_call`] always as a call of the runtime library.
+    fn rt_call_library(
+        &mut self,
+        kind: RtKind,
+        aux: u32,
+        args: &[S<'c>],
+        n_out: usize,
+        force_varying: bool,
+    ) -> Vec<S<'c>> {
         let uni = !force_varying && args.iter().all(|a| a.r == Repr::U);
         let addr = if uni { (self.rt_u)(kind, aux) } else { (self.rt_v)(kind, aux) };
         let fnp = self.const_fn_ptr(addr);
@@ -874,10 +917,11 @@ impl<'c, 'm> Cg<'c, 'm> {
         match name.as_str() {
             "specular" => {
                 let n = triple(args.first());
+                let key = self.normal_key(v);
                 let r = self.emit_call(v, args)?;
                 match (r, n) {
                     (Val::Num(c), Some(n)) if c.len() == 6 || c.len() == 9 => {
-                        self.lit_store(&n, &c[3..]);
+                        self.lit_store(&n, &c[3..], key);
                         Ok(Val::Num(c[..3].to_vec()))
                     }
                     (r, _) => Ok(r),
@@ -886,8 +930,18 @@ impl<'c, 'm> Cg<'c, 'm> {
             "diffuse" | "ambient" => {
                 let f = self.cur_fn();
                 let n = if name == "diffuse" { triple(args.first()) } else { None };
+                // The kept sums are tried only under the same mask as far as the code generator
+                // can tell, and for `diffuse` only for a normal from the same source; the test at
+                // run time decides.
+                let mask_now = (self.st().mask, self.mask_stores.get());
+                let (same_mask, same_normal) = match self.lit_key {
+                    Some((key, p, k)) => {
+                        ((p, k) == mask_now, n.is_some() && key.is_some() && key == self.normal_key(v))
+                    }
+                    None => (false, false),
+                };
                 let memo = match self.lit {
-                    Some(m) if m.f == f && (n.is_some() || (name == "ambient" && m.amb.is_some())) => m,
+                    Some(m) if m.f == f && same_mask && (same_normal || (name == "ambient" && m.amb.is_some())) => m,
                     _ => {
                         return match (name == "ambient").then(|| self.ambient_with_diffuse(v)).flatten() {
                             Some(r) => Ok(r),
@@ -895,7 +949,15 @@ impl<'c, 'm> Cg<'c, 'm> {
                         }
                     }
                 };
-                self.lit_guarded(memo, n.as_deref(), |cg| cg.emit_call(v, args))
+                // Where the kept sums do not apply at run time (another mask), the renderer's
+                // loop: a compiled loop there too would add code to every fused call for a case
+                // the usual shaders fold away.
+                self.lit_guarded(memo, n.as_deref(), |cg| {
+                    cg.lights_by_renderer = true;
+                    let r = cg.emit_call(v, args);
+                    cg.lights_by_renderer = false;
+                    r
+                })
             }
             _ => self.emit_call(v, args),
         }
@@ -918,17 +980,30 @@ impl<'c, 'm> Cg<'c, 'm> {
         if self.t.dual {
             return None;
         }
-        let n = match *self.amb_partner.get(&v.0)? {
-            NormalSrc::Slot(s) => Self::plain_triple(&self.load_slot(s))?,
-            NormalSrc::Value(a) => Self::plain_triple(self.vals[a.0 as usize].as_ref()?)?,
+        let (n, key) = match *self.amb_partner.get(&v.0)? {
+            NormalSrc::Slot(s) => {
+                (Self::plain_triple(&self.load_slot(s))?, NormalKey::Slot(s, self.slot_stores[s.0 as usize].get()))
+            }
+            NormalSrc::Value(a) => (Self::plain_triple(self.vals[a.0 as usize].as_ref()?)?, NormalKey::Value(a)),
         };
-        let sums = self.host_call(host::DIFFUSE, 1, &n, 6);
-        self.lit_store(&n, &sums);
+        let sums = self.light_call(host::DIFFUSE, 1, &n, 6);
+        self.lit_store(&n, &sums, Some(key));
         Some(Val::Num(sums[3..].to_vec()))
     }
 
-    /// Keeps the sums `extra` (diffuse, then ambient if present) of a `specular(n, …)` call.
-    fn lit_store(&mut self, n: &[S<'c>], extra: &[S<'c>]) {
+    /// Where the normal argument of light call `v` comes from.
+    fn normal_key(&self, v: Value) -> Option<NormalKey> {
+        let a = *self.func.inst(v).args.first()?;
+        Some(match self.func.inst(a).op {
+            Op::Load(s) => NormalKey::Slot(s, self.slot_stores[s.0 as usize].get()),
+            _ => NormalKey::Value(a),
+        })
+    }
+
+    /// Keeps the sums `extra` (diffuse, then ambient if present) of a `specular(n, …)` call
+    /// whose normal came from `key`.
+    fn lit_store(&mut self, n: &[S<'c>], extra: &[S<'c>], key: Option<NormalKey>) {
+        self.lit_key = Some((key, self.st().mask, self.mask_stores.get()));
         let f = self.cur_fn();
         let amb = extra.len() == 6;
         let memo = match self.lit {
@@ -1054,6 +1129,7 @@ impl<'c, 'm> Cg<'c, 'm> {
         M { uni: false, v: self.b.build_load(p, "").expect("load") }
     }
     fn store_mask(&self, p: PointerValue<'c>, m: M<'c>) {
+        self.mask_stores.set(self.mask_stores.get() + 1);
         let m = self.splat_mask(m);
         self.b.build_store(p, m.v).expect("store");
     }
@@ -1091,6 +1167,8 @@ impl<'c, 'm> Cg<'c, 'm> {
 
     /// Writes component `i` of slot `s` with `v` for the lanes in `m` (`None`: all lanes).
     fn store_comp(&self, s: SlotId, i: usize, v: S<'c>, m: Option<M<'c>>) {
+        let count = &self.slot_stores[s.0 as usize];
+        count.set(count.get() + 1);
         let st = &self.slots[s.0 as usize];
         let (p, d) = st.ptrs[i];
         let v = self.to(v, st.r);
@@ -2259,7 +2337,8 @@ impl<'c, 'm> Cg<'c, 'm> {
             }
         }
         let want = self.inst_repr[v.0 as usize].letter();
-        format!("ar_{op}_{types}.{reprs}{want}{extra}.{}", letter(inst.ty))
+        let host = if self.lights_by_renderer { ".host" } else { "" };
+        format!("ar_{op}_{types}.{reprs}{want}{extra}.{}{host}", letter(inst.ty))
     }
 
     fn load_elem(&mut self, s: SlotId, index: Value, ty: Type) -> R<Val<'c>> {
@@ -2908,13 +2987,13 @@ impl<'c> Cg<'c, '_> {
                 let aux = nk as u32 | bi << 8 | (w as u32) << 16;
                 Val::Num(self.rt_call(RtKind::Spline, aux, &all, w, false))
             }
-            "ambient" => Val::Num(self.host_call(host::AMBIENT, 0, &[], 3)),
-            "diffuse" => Val::Num(self.host_call(host::DIFFUSE, 0, &nums(self, 0)?, 3)),
+            "ambient" => Val::Num(self.light_call(host::AMBIENT, 0, &[], 3)),
+            "diffuse" => Val::Num(self.light_call(host::DIFFUSE, 0, &nums(self, 0)?, 3)),
             "specular" => {
                 let args = flat_args(self, 0..3)?;
                 match self.lit_sums(&args) {
                     // specular ++ diffuse [++ ambient]; the call site keeps the sums.
-                    Some(k) => Val::Num(self.host_call(host::SPECULAR, k, &args, 3 + 3 * k as usize)),
+                    Some(k) => Val::Num(self.light_call(host::SPECULAR, k, &args, 3 + 3 * k as usize)),
                     None => Val::Num(self.host_call(host::SPECULAR, 0, &args, 3)),
                 }
             }
@@ -2955,15 +3034,60 @@ impl<'c> Cg<'c, '_> {
             self.mor(self.cmp(FloatPredicate::OLT, l2, self.fc(lo)), self.cmp(FloatPredicate::OGT, l2, self.fc(hi)));
         // The rare path, normalize(v / max|c|), only when some lane needs it (as anysl-core).
         self.when_any(rescale, unit, |cg, unit| {
-            let m = cg.minmax(cg.minmax(cg.abs(a[0]), cg.abs(a[1]), true), cg.abs(a[2]), true);
-            let usable =
-                cg.mand(cg.cmp(FloatPredicate::OGT, m, zero), cg.cmp(FloatPredicate::OLT, m, cg.fc(f64::INFINITY)));
-            let den = cg.sel(usable, m, cg.fc(1.0));
-            let w: Vec<S<'c>> = a.iter().map(|&c| cg.div(c, den)).collect();
-            let wl2 = cg.dot(&w, &w);
-            let wk = cg.sel(cg.cmp(FloatPredicate::OGT, wl2, zero), cg.div(cg.fc(1.0), cg.sqrt(wl2)), zero);
-            (0..3).map(|c| cg.sel(rescale, cg.mul(w[c], wk), unit[c])).collect()
+            let r = cg.call_normalize_rescaled(a);
+            (0..3).map(|c| cg.sel(rescale, r[c], unit[c])).collect()
         })
+    }
+
+    /// `normalize(v / max|c|)` for the lanes whose squared length is out of range
+    /// (`Vec3::normalize_rescaled`): a call of one function per module and representation,
+    /// not inlined — a cold path every `normalize` has, compiled once.
+    fn call_normalize_rescaled(&self, a: &[S<'c>]) -> Vec<S<'c>> {
+        let r = a.iter().map(|s| s.r).max().unwrap_or(Repr::U);
+        let t = self.fty(r);
+        let name = format!("anysl_normalize_rescaled.{}", r.letter());
+        let f = self.m.get_function(&name).unwrap_or_else(|| {
+            let sty = self.cx.struct_type(&[t, t, t], false);
+            let f = self.m.add_function(
+                &name,
+                sty.fn_type(&[t.into(), t.into(), t.into()], false),
+                Some(Linkage::Internal),
+            );
+            for attr in ["noinline", "nounwind", "cold"] {
+                f.add_attribute(
+                    AttributeLoc::Function,
+                    self.cx.create_enum_attribute(Attribute::get_named_enum_kind_id(attr), 0),
+                );
+            }
+            self.set_fn_attrs(f);
+            let back = self.b.get_insert_block().expect("positioned");
+            self.b.position_at_end(self.cx.append_basic_block(f, "entry"));
+            let a: Vec<S<'c>> = (0..3).map(|k| S { r, v: f.get_nth_param(k).expect("param"), d: None }).collect();
+            let zero = self.fc(0.0);
+            let m = self.minmax(self.minmax(self.abs(a[0]), self.abs(a[1]), true), self.abs(a[2]), true);
+            let usable = self
+                .mand(self.cmp(FloatPredicate::OGT, m, zero), self.cmp(FloatPredicate::OLT, m, self.fc(f64::INFINITY)));
+            let den = self.sel(usable, m, self.fc(1.0));
+            let w: Vec<S<'c>> = a.iter().map(|&c| self.div(c, den)).collect();
+            let wl2 = self.dot(&w, &w);
+            let wk = self.sel(self.cmp(FloatPredicate::OGT, wl2, zero), self.div(self.fc(1.0), self.sqrt(wl2)), zero);
+            let mut agg = sty.get_undef();
+            for (k, &c) in w.iter().enumerate() {
+                let v = self.to(self.mul(c, wk), r).v;
+                agg = self.b.build_insert_value(agg, v, k as u32, "").expect("insert").into_struct_value();
+            }
+            self.b.build_return(Some(&agg)).expect("ret");
+            self.b.position_at_end(back);
+            f
+        });
+        let args: Vec<BasicMetadataValueEnum<'c>> = a.iter().map(|&s| self.to(s, r).v.into()).collect();
+        let ret = self.b.build_call(f, &args, "").expect("call").try_as_basic_value().basic().expect("value");
+        (0..3)
+            .map(|k| {
+                let v = self.b.build_extract_value(ret.into_struct_value(), k, "").expect("extract");
+                S { r, v, d: None }
+            })
+            .collect()
     }
 
     /// `rare(common)` where some lane of `m` is set, else `common`: a branch around code that

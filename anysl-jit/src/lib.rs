@@ -17,7 +17,7 @@
 //!
 //! The pipeline ([`compile`]): IR passes (specialization of the instance's uniform
 //! parameters, constant folding, DCE, uniform/varying and derivative analyses) → LLVM IR
-//! generation ([`codegen`]) → the new pass manager (`default<O2>`) → MCJIT with the host's
+//! generation ([`codegen`]) → the new pass manager ([`pass_pipeline`]) → MCJIT with the host's
 //! `target-cpu`/`target-features`. [`CompileStats`] reports the time and the instruction
 //! counts of each stage.
 
@@ -138,7 +138,8 @@ impl Variant {
 /// Compiler settings.
 #[derive(Clone, Debug, PartialEq)]
 pub struct JitOptions {
-    /// LLVM optimization level 0–3 (the pass pipeline `default<On>` and the code generator).
+    /// LLVM optimization level 0–3 (the pass pipeline, see [`pass_pipeline`], and the code
+    /// generator's level).
     pub opt_level: u32,
     /// Lower ops to threaded target-library calls (inlined away); `false` emits them inline.
     pub threaded: bool,
@@ -280,6 +281,26 @@ pub fn ir_passes(module: &Module, values: &[Const], specialize: bool) -> (Module
     (m, report)
 }
 
+/// The LLVM pass pipeline of optimization level `level` (0–3). Every target-library function
+/// is `alwaysinline`, so the inliner runs first and the rest optimizes the one shade function
+/// (and its `illuminance` bodies). Levels 1 and 2 run the passes threaded code needs — SROA
+/// for the slots, CSE, instcombine, CFG simplification, SCCP, jump threading, GVN (the kept
+/// light sums fold there), LICM for the light loops, DSE, ADCE — rather than LLVM's
+/// `default<O2>`, which gave the same code for the Table-1 shaders in twice the optimization
+/// time; level 3 is `default<O3>`.
+#[must_use]
+pub fn pass_pipeline(level: u32) -> &'static str {
+    match level {
+        0 => "default<O0>",
+        1 => "always-inline,function(sroa,early-cse<memssa>,instcombine,simplifycfg,adce)",
+        2 => concat!(
+            "always-inline,function(sroa,early-cse<memssa>,instcombine,simplifycfg,sccp,jump-threading,",
+            "correlated-propagation,gvn,instcombine,simplifycfg,loop-mssa(licm),dse,adce,simplifycfg)"
+        ),
+        _ => "always-inline,default<O3>",
+    }
+}
+
 /// Compiles a lowered (not yet optimized) module for `variant` with the instance's parameter
 /// `values`.
 ///
@@ -356,8 +377,8 @@ pub fn compile_with(
     let tm = tgt
         .create_target_machine(&triple, &cpu, &features, level, RelocMode::Default, CodeModel::JITDefault)
         .ok_or_else(|| JitError("no target machine".into()))?;
-    let pipeline = format!("default<O{}>", opts.opt_level.min(3));
-    llmod.run_passes(&pipeline, &tm, PassBuilderOptions::create()).map_err(|e| JitError(e.to_string()))?;
+    let pipeline = pass_pipeline(opts.opt_level);
+    llmod.run_passes(pipeline, &tm, PassBuilderOptions::create()).map_err(|e| JitError(e.to_string()))?;
     stats.insts.push(("llvm-optimized".into(), count_insts(&llmod)));
     stats.times_ms.push(("optimize", t2.elapsed().as_secs_f64() * 1e3));
     let llvm_ir = keep_ir.then(|| llmod.print_to_string().to_string());

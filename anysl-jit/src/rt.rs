@@ -242,6 +242,25 @@ unsafe fn un_op<F: JitFloat>(inp: *const f32, out: *mut f32, aux: u32) {
     Out::<F>::new(out).f(r);
 }
 
+/// std's `f32` sine, cosine or tangent (`aux & 0xff`: [`un::SIN`], [`un::COS`], [`un::TAN`])
+/// of the lanes that `mask` selects, out of `aux >> 8` lanes (the others are copied): the path
+/// of the inline trigonometry for arguments beyond the vector reduction's range, as the
+/// SIMD types take it.
+///
+/// # Safety
+/// `mask`, `inp` and `out` each hold `aux >> 8` lanes.
+pub unsafe extern "C" fn rt_trig_lanes(_: *mut c_void, mask: *const u32, inp: *const f32, out: *mut f32, aux: u32) {
+    let f: fn(f32) -> f32 = match aux & 0xff {
+        un::SIN => f32::sin,
+        un::COS => f32::cos,
+        _ => f32::tan,
+    };
+    for i in 0..(aux >> 8) as usize {
+        let x = *inp.add(i);
+        *out.add(i) = if *mask.add(i) != 0 { f(x) } else { x };
+    }
+}
+
 rt_family!(
     /// Binary and ternary math on floats.
     rt_bin, rt_bin_k, bin_op
@@ -541,16 +560,29 @@ unsafe fn assume_init<T>(s: &[MaybeUninit<T>]) -> &[T] {
     unsafe { &*(s as *const [MaybeUninit<T>] as *const [T]) }
 }
 
-/// What the host shims receive as `ctx`: the renderer's context plus a memo of the last
-/// `specular` light loop, which also summed the diffuse term (the fused loop of
-/// [`diffuse_specular`], as the compiled Rust shaders use): a following `diffuse` of the same
-/// normal under the same mask reuses it instead of visiting the lights again.
+/// What the compiled code and the host shims receive as `ctx`: the context's lights as data
+/// (read by the compiled code, which runs the built-in light loops itself when there are
+/// any, at the offsets [`HOST_CTX_LIGHTS`] and [`HOST_CTX_N_LIGHTS`]), the renderer's context,
+/// and a memo of the last `specular` light loop, which also summed the diffuse term (the
+/// fused loop of [`diffuse_specular`], as the compiled Rust shaders use): a following
+/// `diffuse` of the same normal under the same mask reuses it instead of visiting the lights
+/// again.
+#[repr(C)]
 pub struct HostCtx<'a, F: ShadingFloat, C> {
+    /// [`ShadingContext::lights_as_data`], or null when the context's loops must be called.
+    pub lights: *const LightData,
+    /// The number of `lights`.
+    pub n_lights: usize,
     /// The renderer's context.
     pub ctx: &'a mut C,
     /// `(N, mask, diffuse)` of the last fused loop.
     pub lit: Option<(Vec3<F>, F::Mask, Color<F>)>,
 }
+
+/// Byte offset of [`HostCtx::lights`].
+pub const HOST_CTX_LIGHTS: u64 = 0;
+/// Byte offset of [`HostCtx::n_lights`].
+pub const HOST_CTX_N_LIGHTS: u64 = 8;
 
 fn same<F: ShadingFloat>(a: Vec3<F>, b: Vec3<F>, ma: F::Mask, mb: F::Mask) -> bool {
     let eq = a.x.eq(b.x) & a.y.eq(b.y) & a.z.eq(b.z);
@@ -963,6 +995,19 @@ pub enum RtKind {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The compiled code reads the lights at fixed offsets of `HostCtx` and each light's
+    /// fields at the offsets of `LightData` (taken from the type itself).
+    #[test]
+    fn host_ctx_lights_are_where_the_compiled_code_reads_them() {
+        use core::mem::offset_of;
+        type H = HostCtx<'static, anysl_simd::F32x8, ()>;
+        assert_eq!(offset_of!(H, lights) as u64, HOST_CTX_LIGHTS);
+        assert_eq!(offset_of!(H, n_lights) as u64, HOST_CTX_N_LIGHTS);
+        type H1 = HostCtx<'static, f32, ()>;
+        assert_eq!(offset_of!(H1, lights) as u64, HOST_CTX_LIGHTS);
+        assert_eq!(offset_of!(H1, n_lights) as u64, HOST_CTX_N_LIGHTS);
+    }
 
     #[test]
     fn spline_bases_by_index_are_the_named_ones() {

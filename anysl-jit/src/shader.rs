@@ -148,7 +148,14 @@ impl JitShader {
         let gbuf = (ctx.globals() as *const Globals<F>).cast::<f32>();
         unsafe { G::write_mask(cast::<F::Mask, G::Mask>(e.mask()), mbuf.as_mut_ptr()) };
         let host = HostTable::<F, C, G>::table();
-        let mut hc = HostCtx { ctx, lit: None };
+        // The lights as data, when the context has them, are read by the compiled code like
+        // the globals: in place, while the host shims hold the context (which never changes
+        // them: a `ShadingContext` hands them out only by shared reference).
+        let (lights, n_lights) = match ctx.lights_as_data() {
+            Some(l) => (l.as_ptr(), l.len()),
+            None => (core::ptr::null(), 0),
+        };
+        let mut hc = HostCtx { lights, n_lights, ctx, lit: None };
         // SAFETY: the buffers have the layout the compiled code expects; `ctx` is a `C`, which
         // is what the host table's shims take.
         unsafe {

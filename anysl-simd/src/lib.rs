@@ -62,6 +62,20 @@ mod soa;
 
 pub use soa::{pack, pack_color, pack_vec3, unpack, unpack_color, unpack_vec3, Lanes};
 
+/// The constants of the vector math kernels — polynomial coefficients (`c[0] + c[1]·x + …`,
+/// evaluated by Horner's rule with FMA), Cody–Waite splits and thresholds — for code
+/// generators that emit the same algorithms (the JIT's inline transcendentals): defined
+/// once, so both compute the same bits. The algorithms are those of `src/math.rs`.
+pub mod kernel_consts {
+    pub use crate::math::{
+        ASIN_A, ATAN_P, COS_C, EXP2_Q, FRAC_2_PI, LN2_HI16, LN2_LO16, LOG2E_HI, LOG2E_LO, LOG_L, PIO2_1, PIO2_2,
+        PIO2_3, PIO2_LO, PI_HI, PI_LO, SIN_S, TAN_T, TRIG_VECTOR_LIMIT,
+    };
+    /// The kernels' `fma` is one fused operation (a build with FMA); without FMA, `wide`
+    /// computes `a·b + c` with two roundings.
+    pub const FUSED_MUL_ADD: bool = cfg!(target_feature = "fma");
+}
+
 use anysl_core::{Blend, LatticeBits, Mask, ShadingFloat};
 use core::fmt;
 use core::ops::{

@@ -265,7 +265,7 @@ pub(crate) fn floor_to_i32<W: Wide>(x: W) -> W::I {
 // Exponential and logarithm.
 
 /// 2^r = 1 + r·Q(r) on |r| <= 0.5 (tools/polyfit.py "exp2 Q", max rel. error 2.3e-9).
-const EXP2_Q: [f32; 7] =
+pub const EXP2_Q: [f32; 7] =
     [6.931471825e-1, 2.402265072e-1, 5.550410971e-2, 9.618056938e-3, 1.333350199e-3, 1.546146814e-4, 1.529734072e-5];
 
 /// 2^(hi + lo) for a double-f32 exponent (|lo| <= ulp(hi)), with overflow to +inf,
@@ -301,8 +301,9 @@ pub(crate) fn exp2<W: Wide>(x: W) -> W {
 }
 
 /// log2(e) split as hi + lo (f32 + remainder).
-const LOG2E_HI: f32 = 1.442_695_02;
-const LOG2E_LO: f32 = 1.925_963e-8;
+pub const LOG2E_HI: f32 = 1.442_695_02;
+/// The remainder log2(e) - LOG2E_HI.
+pub const LOG2E_LO: f32 = 1.925_963e-8;
 
 /// e^x = 2^(x·log2 e), with x·log2 e formed exactly as a double-f32 (Cody–Waite in the
 /// exponent rather than in the argument).
@@ -315,7 +316,7 @@ pub(crate) fn exp<W: Wide>(x: W) -> W {
 
 /// ln(1+f) = f - f²/2 + f³·L(f) for f in [√½-1, √2-1] (tools/polyfit.py "log L", degree 8,
 /// max error of the f³·L term relative to ln(1+f): 3.4e-9).
-const LOG_L: [f32; 9] = [
+pub const LOG_L: [f32; 9] = [
     3.333333135e-1,
     -2.499999702e-1,
     2.000071555e-1,
@@ -381,8 +382,9 @@ pub(crate) fn log2<W: Wide>(x: W) -> W {
 }
 
 /// ln 2 split as hi (16 significant bits, so e·hi is exact) + lo.
-const LN2_HI16: f32 = 0.693_145_751_953_125;
-const LN2_LO16: f32 = 1.428_606_8e-6;
+pub const LN2_HI16: f32 = 0.693_145_751_953_125;
+/// The remainder ln 2 - LN2_HI16.
+pub const LN2_LO16: f32 = 1.428_606_8e-6;
 
 /// ln(x).
 #[inline(always)]
@@ -425,11 +427,11 @@ pub(crate) fn pow<W: Wide>(x: W, y: W) -> W {
 // Trigonometry.
 
 /// sin r = r + r³·S(r²), |r| <= 0.82 (tools/polyfit.py "sin S", degree 3, error 3.1e-9).
-const SIN_S: [f32; 4] = [-1.666666716e-1, 8.333331905e-3, -1.983986440e-4, 2.722240652e-6];
+pub const SIN_S: [f32; 4] = [-1.666666716e-1, 8.333331905e-3, -1.983986440e-4, 2.722240652e-6];
 /// cos r = 1 - r²/2 + r⁴·C(r²), |r| <= 0.82 ("cos C", degree 3, error 8.4e-10).
-const COS_C: [f32; 4] = [4.166666791e-2, -1.388888690e-3, 2.480041439e-5, -2.727799142e-7];
+pub const COS_C: [f32; 4] = [4.166666791e-2, -1.388888690e-3, 2.480041439e-5, -2.727799142e-7];
 /// tan r = r + r³·T(r²), |r| <= 0.82 ("tan T", degree 8, error 4.8e-9).
-const TAN_T: [f32; 9] = [
+pub const TAN_T: [f32; 9] = [
     3.333333433e-1,
     1.333333105e-1,
     5.396902934e-2,
@@ -442,16 +444,22 @@ const TAN_T: [f32; 9] = [
 ];
 
 /// π/2 in three f32 parts (Cody–Waite); with FMA, `x - n·P1` is exact for |x| <= 2^19.
-const PIO2_1: f32 = 1.570_796_4;
-const PIO2_2: f32 = -4.371_139e-8;
-const PIO2_3: f32 = -1.715_124_5e-15;
-const PIO2_LO: f32 = PIO2_2;
-const PI_HI: f32 = core::f32::consts::PI;
-const PI_LO: f32 = -8.742_278e-8;
-const FRAC_2_PI: f32 = core::f32::consts::FRAC_2_PI;
+pub const PIO2_1: f32 = 1.570_796_4;
+/// The second part of π/2.
+pub const PIO2_2: f32 = -4.371_139e-8;
+/// The third part of π/2.
+pub const PIO2_3: f32 = -1.715_124_5e-15;
+/// The remainder π/2 - PIO2_1 (as f32).
+pub const PIO2_LO: f32 = PIO2_2;
+/// π rounded to f32.
+pub const PI_HI: f32 = core::f32::consts::PI;
+/// The remainder π - PI_HI.
+pub const PI_LO: f32 = -8.742_278e-8;
+/// 2/π rounded to f32.
+pub const FRAC_2_PI: f32 = core::f32::consts::FRAC_2_PI;
 
 /// Largest |x| reduced in vector code; beyond it the lanes go through std (Payne–Hanek).
-const TRIG_VECTOR_LIMIT: f32 = 524_288.0;
+pub const TRIG_VECTOR_LIMIT: f32 = 524_288.0;
 
 /// Reduces |x| = n·π/2 + r, |r| <= 0.82, returning `(r, n)`.
 #[inline(always)]
@@ -517,7 +525,7 @@ pub(crate) fn tan<W: Wide>(x: W) -> W {
 }
 
 /// asin t = t + t³·A(t²), t in [0, 0.6] ("asin A", degree 7, error 1.6e-9).
-const ASIN_A: [f32; 8] = [
+pub const ASIN_A: [f32; 8] = [
     1.666666716e-1,
     7.500012219e-2,
     4.463566095e-2,
@@ -566,7 +574,7 @@ pub(crate) fn acos<W: Wide>(x: W) -> W {
 }
 
 /// atan t = t + t³·P(t²), t in [0, 1] ("atan P", degree 9, error 1.7e-8).
-const ATAN_P: [f32; 10] = [
+pub const ATAN_P: [f32; 10] = [
     -3.333333433e-1,
     1.999994963e-1,
     -1.428400427e-1,

@@ -239,6 +239,15 @@ impl LightShader for Light {
             Self::Ambient(l) => l.emission(),
         }
     }
+
+    fn data(&self) -> Option<LightData> {
+        match self {
+            Self::Point(l) => l.data(),
+            Self::Distant(l) => l.data(),
+            Self::Spot(l) => l.data(),
+            Self::Ambient(l) => l.data(),
+        }
+    }
 }
 
 /// Ambient colour of the Table 1 scene (`shared/bench/shading_workload.md` §3).

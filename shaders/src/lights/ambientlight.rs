@@ -24,4 +24,9 @@ impl LightShader for AmbientLight {
         let cl = Color::from_array(self.lightcolor) * F::c(self.intensity);
         LightOutput { cl, l: Vec3::zero(), lit: F::Mask::splat(true), emission: Emission::Ambient }
     }
+
+    fn data(&self) -> Option<LightData> {
+        let cl = crate::lights::colour_times(self.lightcolor, self.intensity);
+        Some(LightData { kind: LightKind::Ambient, falloff: Falloff::None, pos: [0.0; 3], cl })
+    }
 }

@@ -28,4 +28,11 @@ impl LightShader for DistantLight {
         let cl = Color::from_array(self.lightcolor) * F::c(self.intensity);
         LightOutput { cl, l, lit, emission: Emission::Distant }
     }
+
+    fn data(&self) -> Option<LightData> {
+        let cl = crate::lights::colour_times(self.lightcolor, self.intensity);
+        // `to - from` in f32, as `light` forms it.
+        let pos = core::array::from_fn(|i| self.to[i] as f32 - self.from[i] as f32);
+        Some(LightData { kind: LightKind::Distant, falloff: Falloff::None, pos, cl })
+    }
 }

@@ -39,4 +39,21 @@ impl LightShader for PointLight {
         };
         LightOutput { cl, l, lit, emission: Emission::Local }
     }
+
+    /// Lights without falloff or with the inverse-square law; other falloffs have none.
+    fn data(&self) -> Option<LightData> {
+        let falloff = if self.falloff == 0.0 {
+            Falloff::None
+        } else if self.falloff == 2.0 {
+            Falloff::InverseSquare
+        } else {
+            return None;
+        };
+        Some(LightData {
+            kind: LightKind::Point,
+            falloff,
+            pos: self.from.map(|x| x as f32),
+            cl: crate::lights::colour_times(self.lightcolor, self.intensity),
+        })
+    }
 }

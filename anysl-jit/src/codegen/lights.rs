@@ -1,0 +1,330 @@
+//! The built-in light loops — `ambient()`, `diffuse(N)` and the fused loop of `specular`
+//! ([`anysl_core::stdlib::diffuse_specular`], which also sums `diffuse(N)` and, when asked,
+//! `ambient()`) — compiled into the shader for contexts that describe their lights as data
+//! ([`anysl_core::ShadingContext::lights_as_data`]; the pointer the compiled code finds in
+//! [`crate::rt::HostCtx`]). Contexts that do not (renderers with shadow rays) get the
+//! renderer call as before: the choice is a branch on that pointer at run time.
+//!
+//! The loop over the lights is [`anysl_core::run_illuminance`] with each light evaluated as
+//! [`anysl_core::LightData::light`] does, and the bodies are those of `anysl-core`'s lighting
+//! functions, operation for operation, so the sums are the renderer's bit for bit (tested:
+//! `tests/light_loops.rs`). Inline, the loop costs no call into the renderer and no spill of
+//! the shader's live registers; `1/roughness` is computed once. The highlight's `pow` is the
+//! library's, called, except where the cosine is `+0` ([`Cg::pow_of_cosine`]).
+
+use super::{Cg, Repr, M, S};
+use crate::abi::host;
+use crate::rt::{self, RtKind};
+use anysl_core::{Falloff, LightData, LightKind};
+use anysl_rsl::ir::Global;
+use core::mem::{offset_of, size_of};
+use inkwell::types::BasicType;
+use inkwell::values::{IntValue, PointerValue};
+use inkwell::{AddressSpace, FloatPredicate, IntPredicate};
+
+/// The sums one loop computes.
+#[derive(Clone, Copy)]
+struct Sums {
+    /// `specular(N, V, roughness)`, fused with `diffuse(N)` (no cone test).
+    specular: bool,
+    /// `diffuse(N)`: with the cone test of `diffuse` unless fused into `specular`.
+    diffuse: bool,
+    /// `ambient()`.
+    ambient: bool,
+}
+
+impl<'c> Cg<'c, '_> {
+    /// The renderer call `idx` ([`host::AMBIENT`], [`host::DIFFUSE`] or [`host::SPECULAR`],
+    /// with `aux` as the host shims take it), or — when the context describes its lights as
+    /// data — the same sums from a loop over them here.
+    pub(super) fn light_call(&mut self, idx: usize, aux: u32, args: &[S<'c>], n_out: usize) -> Vec<S<'c>> {
+        if self.t.dual || self.lights_by_renderer {
+            // Dual numbers: the derivatives of the sums would be needed too.
+            return self.host_call(idx, aux, args, n_out);
+        }
+        let sums = match idx {
+            host::SPECULAR => Sums { specular: true, diffuse: aux >= 1, ambient: aux >= 2 },
+            host::DIFFUSE => Sums { specular: false, diffuse: true, ambient: aux >= 1 },
+            _ => Sums { specular: false, diffuse: false, ambient: true },
+        };
+        let func = self.cur_fn();
+        let ctx = self.st().ctx.into_pointer_value();
+        let word = |cg: &Self, off: u64, t: inkwell::types::BasicTypeEnum<'c>| {
+            let p = unsafe { cg.b.build_gep(ctx, &[cg.cx.i64_type().const_int(off, false)], "") }.expect("gep");
+            let p = cg.b.build_pointer_cast(p, t.ptr_type(AddressSpace::default()), "").expect("cast");
+            cg.b.build_load(p, "").expect("load")
+        };
+        let lights = word(self, rt::HOST_CTX_LIGHTS, self.i8p().into()).into_pointer_value();
+        let n = word(self, rt::HOST_CTX_N_LIGHTS, self.cx.i64_type().into()).into_int_value();
+        let inline_bb = self.cx.append_basic_block(func, "lights.data");
+        let host_bb = self.cx.append_basic_block(func, "lights.host");
+        let join = self.cx.append_basic_block(func, "lights.join");
+        let none = self.b.build_is_null(lights, "").expect("isnull");
+        self.b.build_conditional_branch(none, host_bb, inline_bb).expect("br");
+        self.b.position_at_end(inline_bb);
+        let a = self.light_loop(sums, args, lights, n);
+        let a_end = self.b.get_insert_block().expect("positioned");
+        self.b.build_unconditional_branch(join).expect("br");
+        self.b.position_at_end(host_bb);
+        let h = self.host_call(idx, aux, args, n_out);
+        let h_end = self.b.get_insert_block().expect("positioned");
+        self.b.build_unconditional_branch(join).expect("br");
+        self.b.position_at_end(join);
+        debug_assert_eq!(a.len(), h.len());
+        a.iter()
+            .zip(&h)
+            .map(|(x, y)| {
+                let (x, y) = (self.to(*x, Repr::V).v, self.to(*y, Repr::V).v);
+                let phi = self.b.build_phi(self.vt(), "").expect("phi");
+                phi.add_incoming(&[(&x, a_end), (&y, h_end)]);
+                S { r: Repr::V, v: phi.as_basic_value(), d: None }
+            })
+            .collect()
+    }
+
+    /// The loop over the `n` lights at `lights`: the sums `sums` for the call arguments
+    /// `args` (`N`, then `V` and `roughness` for `specular`), in the order of the host shims'
+    /// outputs (specular, diffuse, ambient).
+    fn light_loop(&mut self, sums: Sums, args: &[S<'c>], lights: PointerValue<'c>, n: IntValue<'c>) -> Vec<S<'c>> {
+        let func = self.cur_fn();
+        let i64t = self.cx.i64_type();
+        let vt = self.vt();
+        let zero = self.fc(0.0);
+        let normal: Vec<S<'c>> = args.iter().take(3).map(|&a| self.to(a, Repr::V)).collect();
+        let view: Vec<S<'c>> = args.iter().skip(3).take(3).map(|&a| self.to(a, Repr::V)).collect();
+        // `F::c(1.0) / roughness`, once for all lights.
+        let exponent = args.get(6).map(|&r| self.div(self.fc(1.0), r));
+        let p = self.read_global(Global::P);
+        let m0 = self.splat_mask(self.load_mask(self.st().mask));
+        // `diffuse` alone tests the cone of `illuminance(P, N, π/2)` (`ConeTest::new`).
+        let cone = (sums.diffuse && !sums.specular).then(|| self.half_space_cone(&normal));
+        let acc = |cg: &Self, on: bool| -> Option<[PointerValue<'c>; 3]> {
+            on.then(|| {
+                [(); 3].map(|()| {
+                    let a = cg.entry_alloca(vt);
+                    cg.b.build_store(a, cg.to(zero, Repr::V).v).expect("store");
+                    a
+                })
+            })
+        };
+        let (spec, diff, amb) = (acc(self, sums.specular), acc(self, sums.diffuse), acc(self, sums.ambient));
+
+        let pre = self.b.get_insert_block().expect("positioned");
+        let head = self.cx.append_basic_block(func, "lights.head");
+        let body = self.cx.append_basic_block(func, "lights.body");
+        let latch = self.cx.append_basic_block(func, "lights.next");
+        let exit = self.cx.append_basic_block(func, "lights.exit");
+        self.b.build_unconditional_branch(head).expect("br");
+        self.b.position_at_end(head);
+        let i = self.b.build_phi(i64t, "").expect("phi");
+        let iv = i.as_basic_value().into_int_value();
+        let more = self.b.build_int_compare(IntPredicate::ULT, iv, n, "").expect("icmp");
+        self.b.build_conditional_branch(more, body, exit).expect("br");
+
+        self.b.position_at_end(body);
+        let size = i64t.const_int(size_of::<LightData>() as u64, false);
+        let at = self.b.build_int_mul(iv, size, "").expect("mul");
+        let rec = unsafe { self.b.build_gep(lights, &[at], "") }.expect("gep");
+        let field_i32 = |cg: &Self, off: usize| -> IntValue<'c> {
+            let q = unsafe { cg.b.build_gep(rec, &[i64t.const_int(off as u64, false)], "") }.expect("gep");
+            let t = cg.cx.i32_type().ptr_type(AddressSpace::default());
+            let q = cg.b.build_pointer_cast(q, t, "").expect("cast");
+            cg.b.build_load(q, "").expect("load").into_int_value()
+        };
+        let field_f32 = |cg: &Self, off: usize| -> S<'c> {
+            let q = unsafe { cg.b.build_gep(rec, &[i64t.const_int(off as u64, false)], "") }.expect("gep");
+            let q = cg.b.build_pointer_cast(q, cg.f32t.ptr_type(AddressSpace::default()), "").expect("cast");
+            S { r: Repr::U, v: cg.b.build_load(q, "").expect("load"), d: None }
+        };
+        let triple = |cg: &Self, off: usize| -> [S<'c>; 3] { [0, 1, 2].map(|k| field_f32(cg, off + 4 * k)) };
+        let kind = field_i32(self, offset_of!(LightData, kind));
+        let cl_u = triple(self, offset_of!(LightData, cl));
+        let amb_bb = self.cx.append_basic_block(func, "light.ambient");
+        let lit_bb = self.cx.append_basic_block(func, "light.directed");
+        let kval = |k: LightKind| self.cx.i32_type().const_int(k as u64, false);
+        let directed = sums.specular || sums.diffuse;
+        let mut cases = Vec::new();
+        if sums.ambient {
+            cases.push((kval(LightKind::Ambient), amb_bb));
+        }
+        if directed {
+            cases.push((kval(LightKind::Point), lit_bb));
+            cases.push((kval(LightKind::Distant), lit_bb));
+        }
+        self.b.build_switch(kind, latch, &cases).expect("switch");
+
+        // `sum_ambient`: `sum += select(lit, Cl, 0)` with every lane lit.
+        self.b.position_at_end(amb_bb);
+        if let Some(amb) = amb {
+            for (c, slot) in amb.iter().enumerate() {
+                let old = S { r: Repr::V, v: self.b.build_load(*slot, "").expect("load"), d: None };
+                let new = self.add(old, cl_u[c]);
+                self.b.build_store(*slot, self.to(new, Repr::V).v).expect("store");
+            }
+        }
+        self.b.build_unconditional_branch(latch).expect("br");
+
+        // The lights `illuminance` visits, `L` and `Cl` as `LightData::light` computes them:
+        // a point light's `L = P - pos` and its falloff, a distant light's `L = pos`.
+        self.b.position_at_end(lit_bb);
+        if directed {
+            let pos = triple(self, offset_of!(LightData, pos));
+            let point = self.b.build_int_compare(IntPredicate::EQ, kind, kval(LightKind::Point), "").expect("icmp");
+            let point = M { uni: true, v: point.into() };
+            let l: Vec<S<'c>> = (0..3).map(|k| self.sel(point, self.sub(p[k], pos[k]), pos[k])).collect();
+            let cl_v: Vec<S<'c>> = cl_u.iter().map(|&c| self.to(c, Repr::V)).collect();
+            // A point light with the inverse-square law divides by `L·L` (a distant light's
+            // falloff field is not read).
+            let falloff = field_i32(self, offset_of!(LightData, falloff));
+            let sq = self.cx.i32_type().const_int(Falloff::InverseSquare as u64, false);
+            let sq = self.b.build_int_compare(IntPredicate::EQ, falloff, sq, "").expect("icmp");
+            let sq = self.b.build_and(point.v.into_int_value(), sq, "").expect("and");
+            let sq_bb = self.cx.append_basic_block(func, "light.inverse_square");
+            let in_bb = self.cx.append_basic_block(func, "light.in");
+            let from = self.b.get_insert_block().expect("positioned");
+            self.b.build_conditional_branch(sq, sq_bb, in_bb).expect("br");
+            self.b.position_at_end(sq_bb);
+            let d2 = self.dot(&l, &l);
+            let cl_sq: Vec<S<'c>> = cl_v.iter().map(|&c| self.div(c, d2)).collect();
+            self.b.build_unconditional_branch(in_bb).expect("br");
+            self.b.position_at_end(in_bb);
+            let cl: Vec<S<'c>> = (0..3)
+                .map(|k| {
+                    let phi = self.b.build_phi(vt, "").expect("phi");
+                    phi.add_incoming(&[(&cl_v[k].v, from), (&cl_sq[k].v, sq_bb)]);
+                    S { r: Repr::V, v: phi.as_basic_value(), d: None }
+                })
+                .collect();
+            // `run_illuminance`: L reversed to point at the light, the lanes in the cone,
+            // nothing to do for no lane.
+            let to_light: Vec<S<'c>> = l.iter().map(|&x| self.neg(x)).collect();
+            let mask = match &cone {
+                Some(c) => self.mand(m0, self.cone_contains(c, &to_light, &normal)),
+                None => m0,
+            };
+            let run_bb = self.cx.append_basic_block(func, "light.body");
+            self.b.build_conditional_branch(self.any(mask), run_bb, latch).expect("br");
+            self.b.position_at_end(run_bb);
+            let update = |cg: &Self, slots: [PointerValue<'c>; 3], add: &[S<'c>]| {
+                for (slot, &x) in slots.iter().zip(add) {
+                    let old = S { r: Repr::V, v: cg.b.build_load(*slot, "").expect("load"), d: None };
+                    let new = cg.sel(mask, cg.add(old, x), old);
+                    cg.b.build_store(*slot, cg.to(new, Repr::V).v).expect("store");
+                }
+            };
+            let lu = self.normalize(&to_light);
+            let ndl = self.dot(&lu, &normal);
+            if let Some(diff) = diff {
+                // `cl · max(L̂·N, 0)`, as `diffuse` and `diffuse_specular` add it.
+                let w = self.lib_max(ndl, zero);
+                let add: Vec<S<'c>> = cl.iter().map(|&c| self.mul(c, w)).collect();
+                update(self, diff, &add);
+            }
+            if let (Some(spec), Some(exponent)) = (spec, exponent) {
+                // `diffuse_specular`'s highlight: `n·normalize(h)` without forming it.
+                let h: Vec<S<'c>> = (0..3).map(|k| self.add(lu[k], view[k])).collect();
+                let h2 = self.dot(&h, &h);
+                let inv = self.div(self.fc(1.0), self.sqrt(h2));
+                let k = self.sel(self.cmp(FloatPredicate::OGT, h2, zero), inv, zero);
+                let ndh = self.lib_max(self.mul(self.dot(&normal, &h), k), zero);
+                let s = self.pow_of_cosine(ndh, exponent);
+                let w = self.sel(self.cmp(FloatPredicate::OGT, ndl, zero), s, self.to(zero, s.r));
+                let add: Vec<S<'c>> = cl.iter().map(|&c| self.mul(c, w)).collect();
+                update(self, spec, &add);
+            }
+            self.b.build_unconditional_branch(latch).expect("br");
+        } else {
+            self.b.build_unconditional_branch(latch).expect("br");
+        }
+
+        self.b.position_at_end(latch);
+        let next = self.b.build_int_add(iv, i64t.const_int(1, false), "").expect("add");
+        self.b.build_unconditional_branch(head).expect("br");
+        i.add_incoming(&[(&i64t.const_zero(), pre), (&next, latch)]);
+
+        self.b.position_at_end(exit);
+        let read = |cg: &Self, slots: [PointerValue<'c>; 3]| -> Vec<S<'c>> {
+            slots.iter().map(|s| S { r: Repr::V, v: cg.b.build_load(*s, "").expect("load"), d: None }).collect()
+        };
+        let mut out = Vec::new();
+        for slots in [spec, diff, amb].into_iter().flatten() {
+            out.extend(read(self, slots));
+        }
+        out
+    }
+
+    /// `pow(x, y)` for the highlight's cosine `x`, as the library computes it, without its cost
+    /// at `x = +0`: there (every lane facing away from the half vector) `pow` is `+0` for
+    /// `y > 0`, and the library reaches that `+0` through a result below the smallest normal
+    /// float — a microcode assist on x86 that cost more than the rest of the light loop. Those
+    /// lanes take `pow(1, y)` and then `+0`: the same bits, no assist. The library's `pow` is
+    /// called: compiled in, it doubled the compile time of plastic-like shaders and shaded no
+    /// faster (`perf_probe -- probe`).
+    fn pow_of_cosine(&mut self, x: S<'c>, y: S<'c>) -> S<'c> {
+        let (x, y) = self.unify(x, y);
+        let it = if self.t.lanes == 1 {
+            self.cx.i32_type().into()
+        } else {
+            inkwell::types::BasicTypeEnum::from(self.cx.i32_type().vec_type(self.t.lanes))
+        };
+        let bits = self.b.build_bit_cast(x.v, it, "").expect("bitcast");
+        let zero_bits = it.const_zero();
+        let plus_zero = match (bits, zero_bits) {
+            (inkwell::values::BasicValueEnum::IntValue(a), inkwell::values::BasicValueEnum::IntValue(b)) => {
+                self.b.build_int_compare(IntPredicate::EQ, a, b, "").expect("icmp").into()
+            }
+            (inkwell::values::BasicValueEnum::VectorValue(a), inkwell::values::BasicValueEnum::VectorValue(b)) => {
+                self.b.build_int_compare(IntPredicate::EQ, a, b, "").expect("icmp").into()
+            }
+            _ => unreachable!("integer lanes of one shape"),
+        };
+        let zero = self.fc(0.0);
+        let skip = self.mand(M { uni: false, v: plus_zero }, self.cmp(FloatPredicate::OGT, y, zero));
+        let base = self.sel(skip, self.fc(1.0), x);
+        let p = self.rt_call_library(RtKind::Bin, rt::bin::POW, &[base, y], 1, false)[0];
+        self.sel(skip, self.to(zero, p.r), p)
+    }
+
+    /// `a.max(b)` as the float type's library computes it: `f32::max` (LLVM's `maxnum`) for
+    /// `f32`, the select of `anysl-simd` for vectors.
+    fn lib_max(&self, a: S<'c>, b: S<'c>) -> S<'c> {
+        if self.t.lanes == 1 {
+            return self.minmax(a, b, true);
+        }
+        let (a, b) = self.unify(a, b);
+        let nan = self.cmp(FloatPredicate::UNO, a, a);
+        let lt = self.cmp(FloatPredicate::OLT, a, b);
+        self.sel(nan, b, self.sel(lt, b, a))
+    }
+
+    /// `ConeTest::new(n, π/2)`: `(c²·|n|², narrow, all)` with `c = cos(π/2)` as the float
+    /// type computes it.
+    fn half_space_cone(&self, n: &[S<'c>]) -> (S<'c>, bool, bool) {
+        let angle = core::f64::consts::FRAC_PI_2 as f32;
+        let c = if self.t.lanes == 1 {
+            angle.cos()
+        } else {
+            use anysl_core::ShadingFloat;
+            anysl_simd::F32x8::splat(angle).cos().to_array()[0]
+        };
+        let c2a2 = self.mul(self.fc(f64::from(c * c)), self.dot(n, n));
+        (c2a2, c >= 0.0, angle >= core::f32::consts::PI)
+    }
+
+    /// `ConeTest::contains(dir)` for the cone `(c2a2, narrow, all)` around `axis`.
+    fn cone_contains(&self, cone: &(S<'c>, bool, bool), dir: &[S<'c>], axis: &[S<'c>]) -> M<'c> {
+        let &(c2a2, narrow, all) = cone;
+        if all {
+            return self.mconst(true);
+        }
+        let d = self.dot(dir, axis);
+        let front = self.cmp(FloatPredicate::OGE, d, self.fc(0.0));
+        let dd = self.mul(d, d);
+        let rhs = self.mul(c2a2, self.dot(dir, dir));
+        if narrow {
+            self.mand(front, self.cmp(FloatPredicate::OGE, dd, rhs))
+        } else {
+            self.mor(front, self.cmp(FloatPredicate::OLE, dd, rhs))
+        }
+    }
+}
