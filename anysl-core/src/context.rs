@@ -357,6 +357,72 @@ impl LightData {
     }
 }
 
+/// What the shared light loops ([`run_illuminance`], [`sum_ambient`]) need of a light: every
+/// [`LightShader`], and a light described as [`LightData`] — so a context can run its loops
+/// over whichever it has. (The names differ from [`LightShader`]'s so that both traits can be
+/// in scope.)
+pub trait LightSource {
+    /// [`LightShader::emission`].
+    fn source_emission(&self) -> Option<Emission>;
+    /// [`LightShader::category`].
+    fn source_category(&self) -> &str;
+    /// [`LightShader::light`].
+    fn evaluate<F: ShadingFloat>(&self, e: &mut Exec<F>, ps: Vec3<F>) -> LightOutput<F>;
+}
+
+impl<T: LightShader> LightSource for T {
+    #[inline(always)]
+    fn source_emission(&self) -> Option<Emission> {
+        self.emission()
+    }
+    #[inline(always)]
+    fn source_category(&self) -> &str {
+        self.category()
+    }
+    #[inline(always)]
+    fn evaluate<F: ShadingFloat>(&self, e: &mut Exec<F>, ps: Vec3<F>) -> LightOutput<F> {
+        self.light(e, ps)
+    }
+}
+
+impl LightSource for LightData {
+    #[inline(always)]
+    fn source_emission(&self) -> Option<Emission> {
+        Some(match self.kind {
+            LightKind::Ambient => Emission::Ambient,
+            LightKind::Point => Emission::Local,
+            LightKind::Distant => Emission::Distant,
+        })
+    }
+    #[inline(always)]
+    fn source_category(&self) -> &str {
+        ""
+    }
+    #[inline(always)]
+    fn evaluate<F: ShadingFloat>(&self, _e: &mut Exec<F>, ps: Vec3<F>) -> LightOutput<F> {
+        self.light(ps)
+    }
+}
+
+impl LightData {
+    /// Whether [`LightData::light`] is the light shader's `light` bit for bit at float type
+    /// `F`: the types whose arithmetic is `f32`'s (scalar, SIMD, dual numbers over them), not
+    /// `f64` (which would see the light's numbers rounded to `f32`) nor intervals (which round
+    /// outward).
+    #[inline(always)]
+    #[must_use]
+    pub fn exact_for<F: ShadingFloat>() -> bool {
+        F::UNIT_ROUNDOFF == f64::from(f32::EPSILON) / 2.0 && !<F::Mask as Mask>::THREE_VALUED
+    }
+
+    /// Every light of `lights` as data, when each has a description and none has a category
+    /// (data carries none for `illuminance("category", …)` to select on).
+    #[must_use]
+    pub fn of_all<L: LightShader>(lights: &[L]) -> Option<Vec<LightData>> {
+        lights.iter().map(|l| if l.category().is_empty() { l.data() } else { None }).collect()
+    }
+}
+
 /// Most lights a [`PointContext`] describes as data (with more, it describes none).
 pub const MAX_DATA_LIGHTS: usize = 8;
 
@@ -478,19 +544,19 @@ pub fn run_illuminance<F, L, V, B>(
     mut body: B,
 ) where
     F: ShadingFloat,
-    L: LightShader,
+    L: LightSource,
     V: FnMut(F::Mask, Vec3<F>, &LightOutput<F>) -> Option<Color<F>>,
     B: FnMut(&mut Exec<F>, Vec3<F>, Color<F>),
 {
     let cone = cone.map(|(axis, angle)| ConeTest::new(axis, angle));
     for light in lights {
-        if light.emission() == Some(Emission::Ambient) {
+        if light.source_emission() == Some(Emission::Ambient) {
             continue;
         }
-        if !category.is_empty() && !crate::shader::category_matches(light.category(), category) {
+        if !category.is_empty() && !crate::shader::category_matches(light.source_category(), category) {
             continue;
         }
-        let out = light.light(e, p);
+        let out = light.evaluate(e, p);
         if out.emission == Emission::Ambient {
             continue;
         }
@@ -526,14 +592,14 @@ pub fn run_illuminance<F, L, V, B>(
 
 /// The sum of the ambient lights' `Cl` at `p`.
 #[inline(always)]
-pub fn sum_ambient<F: ShadingFloat, L: LightShader>(lights: &[L], e: &Exec<F>, p: Vec3<F>) -> Color<F> {
+pub fn sum_ambient<F: ShadingFloat, L: LightSource>(lights: &[L], e: &Exec<F>, p: Vec3<F>) -> Color<F> {
     let mut sum = Color::zero();
     for light in lights {
-        if matches!(light.emission(), Some(Emission::Local | Emission::Distant)) {
+        if matches!(light.source_emission(), Some(Emission::Local | Emission::Distant)) {
             continue;
         }
         let mut le = *e;
-        let out = light.light(&mut le, p);
+        let out = light.evaluate(&mut le, p);
         if out.emission == Emission::Ambient {
             sum += Color::select(out.lit, out.cl, Color::zero());
         }

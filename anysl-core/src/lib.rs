@@ -31,7 +31,7 @@ pub mod vec;
 
 pub use context::{
     illuminate, in_cone, run_illuminance, solar, sum_ambient, ConeTest, Emission, Falloff, GlobalSet, Globals,
-    LightData, LightKind, LightOutput, PointContext, ShadingContext, SurfaceOutput, MAX_DATA_LIGHTS,
+    LightData, LightKind, LightOutput, LightSource, PointContext, ShadingContext, SurfaceOutput, MAX_DATA_LIGHTS,
 };
 pub use exec::{Exec, INTERVAL_LOOP_LIMIT};
 pub use float::{Blend, LatticeBits, Mask, PureFn, ShadingFloat};

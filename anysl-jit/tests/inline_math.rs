@@ -56,7 +56,10 @@ const EDGES: [f32; 40] = [
 ];
 
 fn write_shader(name: &str, body: &str) -> PathBuf {
-    let path = std::env::temp_dir().join(format!("anysl_{name}_{}.sl", std::process::id()));
+    // Tests run in parallel and each removes its files: one name per call.
+    static CALLS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+    let k = CALLS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let path = std::env::temp_dir().join(format!("anysl_{name}_{}_{k}.sl", std::process::id()));
     std::fs::write(&path, format!("surface {name}() {{ {body} }}")).unwrap();
     path
 }

@@ -219,7 +219,10 @@ surface litmemo(float Ks = 0.5; float roughness = 0.2;)
 /// Compiles `src` and checks it against the interpreter at f32, x8 and dual-f32 on 512
 /// random points (`seed`).
 fn matches_interpreter_at_f32_x8_dual(name: &str, src: &str, seed: u64) {
-    let path = std::env::temp_dir().join(format!("anysl_{name}_{}.sl", std::process::id()));
+    // Tests run in parallel and each removes its files: one name per call.
+    static CALLS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+    let k = CALLS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let path = std::env::temp_dir().join(format!("anysl_{name}_{}_{k}.sl", std::process::id()));
     std::fs::write(&path, src).unwrap();
     let jit = JitShader::from_file(&path, &[], JitOptions::default()).unwrap();
     let set = PointSet::random(512, seed);

@@ -557,7 +557,8 @@ fn underflow_bits<F: Lanes>() {
             assert_eq!((got.lane(0) as f32).to_bits(), 0.5f32.exp2().to_bits());
         }
     }
-    for (x, y) in [(0.0f32, 12.5f32), (0.0, 1000.0), (0.0, 0.5), (-0.0, 3.0), (-0.0, 12.5), (1e-30, 6.0), (0.3, 100.0)] {
+    for (x, y) in [(0.0f32, 12.5f32), (0.0, 1000.0), (0.0, 0.5), (-0.0, 3.0), (-0.0, 12.5), (1e-30, 6.0), (0.3, 100.0)]
+    {
         let got = F::pow(F::c(f64::from(x)), F::c(f64::from(y)));
         for i in 0..F::LANES {
             assert_eq!((got.lane(i) as f32).to_bits(), x.powf(y).to_bits(), "pow({x}, {y}) in {}", F::NAME);

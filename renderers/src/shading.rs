@@ -11,8 +11,8 @@ use crate::accel::{Hit, RayPacket, MAX_PACKET};
 use crate::scene::{Scene, SurfaceHit};
 use anysl_ad::Dual;
 use anysl_core::{
-    in_cone, run_illuminance, sum_ambient, Color, Emission, Exec, GlobalSet, Globals, LightOutput, LightShader, Mask,
-    ShadingContext, ShadingFloat, SurfaceOutput, SurfaceShader, SurfaceVisitor, Vec3,
+    in_cone, run_illuminance, sum_ambient, Color, Emission, Exec, GlobalSet, Globals, LightData, LightOutput,
+    LightShader, Mask, ShadingContext, ShadingFloat, SurfaceOutput, SurfaceShader, SurfaceVisitor, Vec3,
 };
 use glam::Vec3A;
 
@@ -38,6 +38,30 @@ pub struct Tracer<'a, S, L> {
     pub scene: &'a Scene<S, L>,
     /// Cast shadow rays in `illuminance` (else every light reaches every point).
     pub shadows: bool,
+    /// The scene's lights as data ([`LightData::of_all`]), when each has a description: the
+    /// light loops then run over plain numbers instead of dispatching to light shaders (for
+    /// the float types where that is the same bits, [`LightData::exact_for`]).
+    pub light_data: Option<&'a [LightData]>,
+}
+
+impl<'a, S, L: LightShader> Tracer<'a, S, L> {
+    /// The tracer of `scene`, with `light_data` made by [`LightData::of_all`] from its lights
+    /// (kept by the caller for the render).
+    #[must_use]
+    pub fn new(scene: &'a Scene<S, L>, shadows: bool, light_data: Option<&'a [LightData]>) -> Self {
+        Self { scene, shadows, light_data }
+    }
+
+    /// The lights as data, where float type `F` computes with them what the light shaders
+    /// compute.
+    #[inline(always)]
+    fn data_for<F: ShadingFloat>(&self) -> Option<&'a [LightData]> {
+        if LightData::exact_for::<F>() {
+            self.light_data
+        } else {
+            None
+        }
+    }
 }
 
 impl<S, L> Clone for Tracer<'_, S, L> {
@@ -651,22 +675,32 @@ impl<F: ShadingFloat, S: SurfaceShader, L: LightShader> ShadingContext<F> for Sc
         body: B,
     ) {
         let tracer = self.tracer;
-        run_illuminance(
-            &tracer.scene.lights,
-            e,
-            category,
-            p,
-            cone,
-            |mask, p, out| {
-                tracer.shadows.then(|| Color::splat(shadow_visibility::<F, S, L>(tracer.scene, mask, p, out)))
-            },
-            body,
-        );
+        let visibility = |mask, p, out: &LightOutput<F>| {
+            tracer.shadows.then(|| Color::splat(shadow_visibility::<F, S, L>(tracer.scene, mask, p, out)))
+        };
+        match tracer.data_for::<F>() {
+            Some(data) => run_illuminance(data, e, category, p, cone, visibility, body),
+            None => run_illuminance(&tracer.scene.lights, e, category, p, cone, visibility, body),
+        }
     }
 
     #[inline(always)]
     fn ambient(&mut self, e: &Exec<F>) -> Color<F> {
-        sum_ambient(&self.tracer.scene.lights, e, self.globals.P)
+        match self.tracer.data_for::<F>() {
+            Some(data) => sum_ambient(data, e, self.globals.P),
+            None => sum_ambient(&self.tracer.scene.lights, e, self.globals.P),
+        }
+    }
+
+    /// Without shadow rays the scene's light loops are the shared ones over the lights as
+    /// data, so code that runs them itself (JIT-compiled shaders) may.
+    #[inline(always)]
+    fn lights_as_data(&self) -> Option<&[LightData]> {
+        if self.tracer.shadows {
+            None
+        } else {
+            self.tracer.data_for::<F>()
+        }
     }
 
     #[inline(always)]

@@ -36,7 +36,7 @@ use crate::shading::{
 };
 use anysl_ad::Dual;
 use anysl_core::points::SplitMix64;
-use anysl_core::{Emission, Exec, LightShader, ParamValue, SurfaceShader, Vec3};
+use anysl_core::{Emission, Exec, LightData, LightShader, ParamValue, SurfaceShader, Vec3};
 use glam::Vec3A;
 
 /// How the pbrt-like renderer computes the light leaving a surface.
@@ -82,7 +82,8 @@ where
     let n = opts.grid();
     let weight = 1.0 / (n * n) as f32;
     let footprint = 1.0 / n as f32;
-    let tracer = Tracer { scene, shadows: opts.shadows };
+    let light_data = LightData::of_all(&scene.lights);
+    let tracer = Tracer::new(scene, opts.shadows, light_data.as_deref());
     let derivs = FilteredShading::flags(&scene.surfaces, opts.derivatives);
     let filtered = FilteredShading { uses_derivatives: &derivs };
     let passive = Passive { scene, params: &params, shadows: opts.shadows, derivs: &derivs };
