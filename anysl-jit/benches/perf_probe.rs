@@ -4,7 +4,7 @@
 use anysl_core::points::{shade_points, PointSet, ShadeOut};
 use anysl_jit::{compile, JitOptions, JitShader, Variant};
 use anysl_shaders::{table1_lights, Light, Surface};
-use anysl_simd::F32x8;
+use anysl_simd::{F32x16, F32x8};
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -155,17 +155,23 @@ fn spin_x8() {
         std::fs::write(format!("{dir}/code.bin"), bytes).unwrap();
         std::fs::write(format!("{dir}/addr"), format!("{addr:#x}")).unwrap();
     }
-    // `LANES=1` spins the scalar variants instead.
-    let scalar = std::env::var("LANES").is_ok_and(|v| v == "1");
+    // `LANES=1` spins the scalar variants instead, `LANES=16` the 16-wide ones.
+    let lanes = std::env::var("LANES").map_or(8, |v| v.parse().unwrap_or(8));
     let t = Instant::now();
+    let mut calls = 0u64;
     while t.elapsed().as_secs_f64() < 3.0 {
-        match (aot, scalar) {
-            (true, false) => shade_points::<F32x8, _, Light>(&s, &lights, &set, &mut out),
-            (false, false) => shade_points::<F32x8, _, Light>(&jit, &lights, &set, &mut out),
-            (true, true) => shade_points::<f32, _, Light>(&s, &lights, &set, &mut out),
-            (false, true) => shade_points::<f32, _, Light>(&jit, &lights, &set, &mut out),
+        match (aot, lanes) {
+            (true, 1) => shade_points::<f32, _, Light>(&s, &lights, &set, &mut out),
+            (false, 1) => shade_points::<f32, _, Light>(&jit, &lights, &set, &mut out),
+            (true, 16) => shade_points::<F32x16, _, Light>(&s, &lights, &set, &mut out),
+            (false, 16) => shade_points::<F32x16, _, Light>(&jit, &lights, &set, &mut out),
+            (true, _) => shade_points::<F32x8, _, Light>(&s, &lights, &set, &mut out),
+            (false, _) => shade_points::<F32x8, _, Light>(&jit, &lights, &set, &mut out),
         }
+        calls += 1;
     }
+    let pts = calls as f64 * set.len() as f64 / t.elapsed().as_secs_f64();
+    println!("{name} {} lanes {lanes}: {pts:.3e} points/s", if aot { "aot" } else { "jit" });
 }
 
 /// Fixed cost per call: `SHADER` (a `shaders/rsl/standard` or Table-1 name) JIT x8 against its

@@ -428,14 +428,18 @@ unsafe fn noise_op<F: JitFloat>(inp: *const f32, out: *mut f32, aux: u32) {
     match kind {
         nkind::NOISE | nkind::SNOISE if inlined => {
             let signed = kind == nkind::SNOISE;
-            let n = |seed| {
+            // The noise inlined like the kernel: a closure here was left out of line in one
+            // build of this crate and x16 noise ran 7x slower.
+            #[inline(always)]
+            fn one<F: JitFloat>(d: NoiseDomain<F>, seed: u32, signed: bool) -> F {
                 let s = snoise_inlined(d, seed);
                 if signed {
                     s
                 } else {
                     unsigned_noise(s)
                 }
-            };
+            }
+            let n = |seed| one(d, seed, signed);
             if w == 1 {
                 o.f(n(0));
             } else {
@@ -474,8 +478,8 @@ unsafe fn noise_op<F: JitFloat>(inp: *const f32, out: *mut f32, aux: u32) {
             let lac = get(1, 2.0);
             let gain = get(2, 0.5);
             o.f(match (kind == nkind::FBM, inlined) {
-                (true, true) => octave_sum(d, oct, lac, gain, |d| snoise_inlined(d, 0)),
-                (false, true) => octave_sum(d, oct, lac, gain, |d| snoise_inlined(d, 0).abs()),
+                (true, true) => octave_sum(d, oct, lac, gain, #[inline(always)] |d| snoise_inlined(d, 0)),
+                (false, true) => octave_sum(d, oct, lac, gain, #[inline(always)] |d| snoise_inlined(d, 0).abs()),
                 (true, false) => fbm(d, oct, lac, gain),
                 (false, false) => turbulence(d, oct, lac, gain),
             });
