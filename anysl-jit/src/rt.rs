@@ -478,8 +478,22 @@ unsafe fn noise_op<F: JitFloat>(inp: *const f32, out: *mut f32, aux: u32) {
             let lac = get(1, 2.0);
             let gain = get(2, 0.5);
             o.f(match (kind == nkind::FBM, inlined) {
-                (true, true) => octave_sum(d, oct, lac, gain, #[inline(always)] |d| snoise_inlined(d, 0)),
-                (false, true) => octave_sum(d, oct, lac, gain, #[inline(always)] |d| snoise_inlined(d, 0).abs()),
+                (true, true) => octave_sum(
+                    d,
+                    oct,
+                    lac,
+                    gain,
+                    #[inline(always)]
+                    |d| snoise_inlined(d, 0),
+                ),
+                (false, true) => octave_sum(
+                    d,
+                    oct,
+                    lac,
+                    gain,
+                    #[inline(always)]
+                    |d| snoise_inlined(d, 0).abs(),
+                ),
                 (true, false) => fbm(d, oct, lac, gain),
                 (false, false) => turbulence(d, oct, lac, gain),
             });
