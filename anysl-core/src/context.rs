@@ -415,11 +415,12 @@ impl LightData {
         F::UNIT_ROUNDOFF == f64::from(f32::EPSILON) / 2.0 && !<F::Mask as Mask>::THREE_VALUED
     }
 
-    /// Every light of `lights` as data, when each has a description and none has a category
-    /// (data carries none for `illuminance("category", …)` to select on).
+    /// Every light of `lights` as data, when each has a description. Data carries no
+    /// category: a loop that selects on one (`illuminance("category", …)`) runs over the light
+    /// shaders.
     #[must_use]
     pub fn of_all<L: LightShader>(lights: &[L]) -> Option<Vec<LightData>> {
-        lights.iter().map(|l| if l.category().is_empty() { l.data() } else { None }).collect()
+        lights.iter().map(LightShader::data).collect()
     }
 }
 

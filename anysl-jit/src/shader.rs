@@ -101,6 +101,22 @@ impl JitShader {
         Self::new(c.module, opts)
     }
 
+    /// [`JitShader::from_file`] for `.sl` source text; `name` stands for the file in
+    /// diagnostics.
+    ///
+    /// # Errors
+    /// Compile errors, rendered.
+    pub fn from_source(
+        name: &str,
+        text: &str,
+        include_dirs: &[std::path::PathBuf],
+        opts: JitOptions,
+    ) -> Result<Self, JitError> {
+        let copts = CompileOptions { include_dirs: include_dirs.to_vec(), ..Default::default() };
+        let c = anysl_rsl::compile_source(name, text, &copts).map_err(|e| JitError(e.to_string()))?;
+        Self::new(c.module, opts)
+    }
+
     /// The compiled variant (compiling it now if needed).
     ///
     /// # Errors

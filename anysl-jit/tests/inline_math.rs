@@ -55,13 +55,10 @@ const EDGES: [f32; 40] = [
     -f32::NAN,
 ];
 
-fn write_shader(name: &str, body: &str) -> PathBuf {
-    // Tests run in parallel and each removes its files: one name per call.
-    static CALLS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
-    let k = CALLS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-    let path = std::env::temp_dir().join(format!("anysl_{name}_{}_{k}.sl", std::process::id()));
-    std::fs::write(&path, format!("surface {name}() {{ {body} }}")).unwrap();
-    path
+/// A surface shader `name` with body `body`, compiled from source.
+fn shader(name: &str, body: &str) -> JitShader {
+    let src = format!("surface {name}() {{ {body} }}");
+    JitShader::from_source(&format!("{name}.sl"), &src, &[], JitOptions::default()).unwrap()
 }
 
 /// The six outputs of `jit` at the points whose `s` and `t` lanes are `s` and `t`.
@@ -120,14 +117,10 @@ fn check_width<F: ShadingFloat>(unary: &JitShader, binary: &JitShader) {
 }
 
 fn kernels() -> (JitShader, JitShader) {
-    let unary = write_shader("mathu", "Ci = color(sin(s), cos(s), tan(s)); Oi = color(asin(s), acos(s), atan(s));");
+    let unary = shader("mathu", "Ci = color(sin(s), cos(s), tan(s)); Oi = color(asin(s), acos(s), atan(s));");
     let binary =
-        write_shader("mathb", "Ci = color(exp(s), log(s), atan(s, t)); Oi = color(pow(s, t), log(s, t), pow(t, s));");
-    let j = |p: &PathBuf| JitShader::from_file(p, &[], JitOptions::default()).unwrap();
-    let r = (j(&unary), j(&binary));
-    let _ = std::fs::remove_file(unary);
-    let _ = std::fs::remove_file(binary);
-    r
+        shader("mathb", "Ci = color(exp(s), log(s), atan(s, t)); Oi = color(pow(s, t), log(s, t), pow(t, s));");
+    (unary, binary)
 }
 
 #[test]

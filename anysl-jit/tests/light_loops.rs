@@ -138,13 +138,7 @@ surface loops(float Ks = 0.5; float roughness = 0.2;)
     Oi = ambient() + diffuse(N);
 }
 "#;
-    // Tests run in parallel and each removes its files: one name per call.
-    static CALLS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
-    let k = CALLS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-    let path = std::env::temp_dir().join(format!("anysl_loops_{}_{k}.sl", std::process::id()));
-    std::fs::write(&path, src).unwrap();
-    v.push(("loops".into(), JitShader::from_file(&path, &[], JitOptions::default()).unwrap()));
-    let _ = std::fs::remove_file(&path);
+    v.push(("loops".into(), JitShader::from_source("loops.sl", src, &[], JitOptions::default()).unwrap()));
     v
 }
 

@@ -219,17 +219,11 @@ surface litmemo(float Ks = 0.5; float roughness = 0.2;)
 /// Compiles `src` and checks it against the interpreter at f32, x8 and dual-f32 on 512
 /// random points (`seed`).
 fn matches_interpreter_at_f32_x8_dual(name: &str, src: &str, seed: u64) {
-    // Tests run in parallel and each removes its files: one name per call.
-    static CALLS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
-    let k = CALLS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-    let path = std::env::temp_dir().join(format!("anysl_{name}_{}_{k}.sl", std::process::id()));
-    std::fs::write(&path, src).unwrap();
-    let jit = JitShader::from_file(&path, &[], JitOptions::default()).unwrap();
+    let jit = JitShader::from_source(&format!("{name}.sl"), src, &[], JitOptions::default()).unwrap();
     let set = PointSet::random(512, seed);
     assert!(check::<f32>(name, &jit, &set) < 1e-4, "f32");
     assert!(check::<F32x8>(name, &jit, &set) < 1e-4, "x8");
     assert!(check::<Dual<f32>>(name, &jit, &set) < 1e-4, "dual");
-    let _ = std::fs::remove_file(&path);
 }
 
 /// Indirect calls (calls into the renderer) left in the optimized IR of `name` at f32 and x8.

@@ -678,7 +678,8 @@ impl<F: ShadingFloat, S: SurfaceShader, L: LightShader> ShadingContext<F> for Sc
         let visibility = |mask, p, out: &LightOutput<F>| {
             tracer.shadows.then(|| Color::splat(shadow_visibility::<F, S, L>(tracer.scene, mask, p, out)))
         };
-        match tracer.data_for::<F>() {
+        // Data carries no category to select on.
+        match tracer.data_for::<F>().filter(|_| category.is_empty()) {
             Some(data) => run_illuminance(data, e, category, p, cone, visibility, body),
             None => run_illuminance(&tracer.scene.lights, e, category, p, cone, visibility, body),
         }
