@@ -193,10 +193,20 @@ impl PointSet {
     pub fn load_globals_read<F: ShadingFloat>(&self, i: usize, g: &mut Globals<F>, read: GlobalSet) {
         assert!(i + F::LANES <= self.n, "points {i}..{} of {}", i + F::LANES, self.n);
         let has = |x: GlobalSet| read.contains(x);
+        // Every component is stored in place, one value at a time: a `Vec3` built first and
+        // then copied had rustc merge the copies into 64-byte moves that read back two
+        // 32-byte stores just made (a store-forwarding stall on every chunk).
         let dpdx = self.load3::<F>(field::DPDX, i);
         let dpdy = self.load3::<F>(field::DPDY, i);
-        let seeded = |v: Vec3<F>| {
-            Vec3::new(v.x.with_derivs(dpdx.x, dpdy.x), v.y.with_derivs(dpdx.y, dpdy.y), v.z.with_derivs(dpdx.z, dpdy.z))
+        let seeded = |dst: &mut Vec3<F>, k: usize| {
+            dst.x = self.load::<F>(k, i).with_derivs(dpdx.x, dpdy.x);
+            dst.y = self.load::<F>(k + 1, i).with_derivs(dpdx.y, dpdy.y);
+            dst.z = self.load::<F>(k + 2, i).with_derivs(dpdx.z, dpdy.z);
+        };
+        let plain = |dst: &mut Vec3<F>, k: usize| {
+            dst.x = self.load::<F>(k, i);
+            dst.y = self.load::<F>(k + 1, i);
+            dst.z = self.load::<F>(k + 2, i);
         };
         let (dsdx, dsdy, dtdx, dtdy) = (
             self.load::<F>(field::DSDX, i),
@@ -205,16 +215,16 @@ impl PointSet {
             self.load(field::DTDY, i),
         );
         if has(GlobalSet::P) {
-            g.P = seeded(self.load3(field::P, i));
+            seeded(&mut g.P, field::P);
         }
         if has(GlobalSet::N) {
-            g.N = seeded(self.load3(field::N, i));
+            seeded(&mut g.N, field::N);
         }
         if has(GlobalSet::NG) {
-            g.Ng = seeded(self.load3(field::N, i));
+            seeded(&mut g.Ng, field::N);
         }
         if has(GlobalSet::I) {
-            g.I = seeded(self.load3(field::I, i));
+            seeded(&mut g.I, field::I);
         }
         g.E = Vec3::c(0.0, 0.0, 3.0);
         if has(GlobalSet::S) {
@@ -236,10 +246,10 @@ impl PointSet {
             g.dv = self.load(field::DV, i);
         }
         if has(GlobalSet::DPDU) {
-            g.dPdu = self.load3(field::DPDU, i);
+            plain(&mut g.dPdu, field::DPDU);
         }
         if has(GlobalSet::DPDV) {
-            g.dPdv = self.load3(field::DPDV, i);
+            plain(&mut g.dPdv, field::DPDV);
         }
         g.Cs = Color::c(1.0, 1.0, 1.0);
         g.Os = Color::c(1.0, 1.0, 1.0);

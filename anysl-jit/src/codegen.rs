@@ -2777,9 +2777,21 @@ impl<'c> Cg<'c, '_> {
                 let k = self.mul(self.fc(2.0), self.dot(&i, &nn));
                 Val::Num((0..3).map(|c| self.sub(i[c], self.mul(nn[c], k))).collect())
             }
-            "refract" => Val::Num(self.rt_call(RtKind::Geo, rt::geo::REFRACT, &flat_args(self, 0..3)?, 3, false)),
+            "refract" => {
+                let a = flat_args(self, 0..3)?;
+                if a.iter().any(|s| s.r == Repr::D) {
+                    Val::Num(self.rt_call(RtKind::Geo, rt::geo::REFRACT, &a, 3, false))
+                } else {
+                    Val::Num(self.refract(&a[0..3], &a[3..6], a[6]))
+                }
+            }
             "fresnel" => {
-                let r = self.rt_call(RtKind::Geo, rt::geo::FRESNEL, &flat_args(self, 0..3)?, 8, false);
+                let a = flat_args(self, 0..3)?;
+                let r = if a.iter().any(|s| s.r == Repr::D) {
+                    self.rt_call(RtKind::Geo, rt::geo::FRESNEL, &a, 8, false)
+                } else {
+                    self.fresnel(&a[0..3], &a[3..6], a[6])
+                };
                 // Outputs in argument order: kr, kt[, R, T].
                 let mut outs = Vec::new();
                 let parts: [Vec<S<'c>>; 4] = [vec![r[0]], vec![r[1]], r[2..5].to_vec(), r[5..8].to_vec()];
@@ -3018,6 +3030,43 @@ impl<'c> Cg<'c, '_> {
         }
         all.truncate(1);
         Ok(all)
+    }
+
+    /// anysl-core's `refract` for uniform and varying triples, operation for operation (dual
+    /// triples use the runtime).
+    fn refract(&self, i: &[S<'c>], n: &[S<'c>], eta: S<'c>) -> Vec<S<'c>> {
+        let (one, zero) = (self.fc(1.0), self.fc(0.0));
+        let idotn = self.dot(i, n);
+        let k = self.sub(one, self.mul(self.mul(eta, eta), self.sub(one, self.mul(idotn, idotn))));
+        let tir = self.cmp(FloatPredicate::OLT, k, zero);
+        let s = self.add(self.mul(eta, idotn), self.sqrt(self.minmax(k, zero, true)));
+        (0..3).map(|c| self.sel(tir, zero, self.sub(self.mul(i[c], eta), self.mul(n[c], s)))).collect()
+    }
+
+    /// anysl-core's `fresnel` for uniform and varying triples, operation for operation:
+    /// `kr, kt, R, T` (dual triples use the runtime).
+    fn fresnel(&self, i: &[S<'c>], n: &[S<'c>], eta: S<'c>) -> Vec<S<'c>> {
+        let (one, zero) = (self.fc(1.0), self.fc(0.0));
+        let iu = self.normalize(i);
+        let c = self.minmax(self.abs(self.dot(&iu, n)), one, false);
+        let inv_eta = self.div(one, eta);
+        let g2 = self.sub(self.add(self.mul(inv_eta, inv_eta), self.mul(c, c)), one);
+        let tir = self.cmp(FloatPredicate::OLT, g2, zero);
+        let g = self.sqrt(self.minmax(g2, zero, true));
+        let (gpc, gmc) = (self.add(g, c), self.sub(g, c));
+        let degenerate = self.mor(self.cmp(FloatPredicate::OLE, gpc, zero), tir);
+        let a = self.div(gmc, self.sel(degenerate, one, gpc));
+        let num = self.sub(self.mul(c, gpc), one);
+        let den = self.add(self.mul(c, gmc), one);
+        let b = self.div(num, self.sel(self.cmp(FloatPredicate::OEQ, den, zero), one, den));
+        let half_a2 = self.mul(self.mul(self.mul(self.fc(0.5), a), a), self.add(one, self.mul(b, b)));
+        let kr = self.sel(degenerate, one, self.minmax(half_a2, one, false));
+        let kt = self.sub(one, kr);
+        let k2 = self.mul(self.fc(2.0), self.dot(&iu, n));
+        let mut out = vec![kr, kt];
+        out.extend((0..3).map(|c| self.sub(iu[c], self.mul(n[c], k2))));
+        out.extend(self.refract(&iu, n, eta));
+        out
     }
 
     /// `Vec3::normalize` for uniform and varying triples (dual triples use the runtime).

@@ -204,6 +204,9 @@ pub struct JitBenchOpts {
     pub shaders: Vec<String>,
 }
 
+/// Seconds a timed sample of `anysl bench jit` lasts at least (passes are repeated).
+const SAMPLE_S: f64 = 0.01;
+
 fn median(mut v: Vec<f64>) -> f64 {
     v.sort_by(f64::total_cmp);
     v[v.len() / 2]
@@ -299,15 +302,24 @@ pub fn bench(opts: &JitBenchOpts) -> Result<Vec<JitBenchRow>, String> {
         ];
         let mut outs: Vec<ShadeOut<f32>> = runners.iter().map(|_| ShadeOut::new(set.len())).collect();
         let mut times: Vec<Vec<f64>> = vec![Vec::new(); runners.len()];
+        // Each timed sample repeats the pass until it lasts about `SAMPLE_S` (from the warm-up
+        // pass): a single pass over the points takes well under a millisecond for the fast
+        // backends, where timer and scheduler jitter on a shared machine would dominate.
+        let mut reps = vec![1usize; runners.len()];
         for (k, (_, _, f)) in runners.iter_mut().enumerate() {
+            let t = Instant::now();
             f(&mut outs[k]);
+            let once = t.elapsed().as_secs_f64().max(1e-7);
+            reps[k] = ((SAMPLE_S / once).ceil() as usize).clamp(1, 10_000);
         }
         // Round-robin timing so drift hits every backend alike.
         for _ in 0..opts.runs {
             for (k, (_, _, f)) in runners.iter_mut().enumerate() {
                 let t = Instant::now();
-                f(&mut outs[k]);
-                times[k].push(t.elapsed().as_secs_f64());
+                for _ in 0..reps[k] {
+                    f(&mut outs[k]);
+                }
+                times[k].push(t.elapsed().as_secs_f64() / reps[k] as f64);
             }
         }
         for (k, (b, c, _)) in runners.iter().enumerate() {
