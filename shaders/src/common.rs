@@ -104,9 +104,28 @@ impl Finish {
 
 /// A square wave of period 1 — 0 on `[0, ½)`, 1 on `[½, 1)` — box-filtered with `filterstep`
 /// over the pixel footprint of `x`. Each of the two edges of a period is filtered by the
-/// `filterstep` nearer to it; without derivatives it is exactly `step(½, mod(x, 1))`.
+/// `filterstep` nearer to it; without derivatives it is exactly `step(½, mod(x, 1))`, which
+/// point types without derivatives compute directly ([`unfiltered_square`]).
 #[inline(always)]
 pub(crate) fn filtered_square<F: ShadingFloat>(x: F) -> F {
+    if !F::HAS_DERIVS && !<F::Mask as Mask>::THREE_VALUED {
+        return unfiltered_square(x);
+    }
+    footprint_square(x)
+}
+
+/// [`filtered_square`] without a footprint: 1 where `mod(x, 1) ≥ ½`, else 0 (NaN gives 0).
+/// Equal to [`footprint_square`] of a value without derivatives: both `filterstep`s there are
+/// `step`, and either branch of its select is 1 exactly where `mod(x, 1) ≥ ½` (the falling
+/// edge's `1 - step(0, mod(x, 1) - 1)` too).
+#[inline(always)]
+pub(crate) fn unfiltered_square<F: ShadingFloat>(x: F) -> F {
+    F::select(fmod(x, F::c(1.0)).ge(F::c(0.5)), F::c(1.0), F::c(0.0))
+}
+
+/// The general form of [`filtered_square`] (dual numbers, intervals).
+#[inline(always)]
+pub(crate) fn footprint_square<F: ShadingFloat>(x: F) -> F {
     let half = F::c(0.5);
     let xm = fmod(x, F::c(1.0));
     let near_half = (xm - half).abs().lt(F::c(0.25));
@@ -116,4 +135,56 @@ pub(crate) fn filtered_square<F: ShadingFloat>(x: F) -> F {
     let rising = filterstep(half, xm);
     let falling = F::c(1.0) - filterstep(F::c(0.0), from_int);
     F::select(near_half, rising, falling)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use anysl_simd::F32x8;
+
+    /// The shortcut equals the general form bit for bit, at and around every edge of the
+    /// period, for negative, huge, subnormal, infinite and NaN arguments.
+    #[test]
+    fn unfiltered_square_is_the_footprint_form_without_derivatives() {
+        let mut xs: Vec<f32> = vec![
+            0.0,
+            -0.0,
+            1.0e-45,
+            -1.0e-45,
+            1.0e-38,
+            0.25,
+            0.5,
+            0.75,
+            1.0,
+            -0.5,
+            -0.25,
+            -1.0,
+            3.5,
+            1.0e7,
+            1.0e7 + 1.0,
+            -1.0e7,
+            1.0e30,
+            f32::MAX,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            f32::NAN,
+        ];
+        for e in [0.0f32, 0.25, 0.5, 0.75, 1.0, 2.5, -3.5] {
+            xs.extend([e.next_down(), e.next_up(), e + 1.0e-7, e - 1.0e-7]);
+        }
+        for k in 0..2000 {
+            xs.push((k as f32 - 1000.0) * 0.0137);
+        }
+        for &x in &xs {
+            let (a, b) = (unfiltered_square(x), footprint_square(x));
+            assert_eq!(a.to_bits(), b.to_bits(), "f32 x = {x:e}: {a} against {b}");
+        }
+        for c in xs.chunks(8) {
+            let x = F32x8::from_lanes(&(0..8).map(|l| f64::from(c[l % c.len()])).collect::<Vec<_>>());
+            let (a, b) = (unfiltered_square(x), footprint_square(x));
+            for l in 0..8 {
+                assert_eq!((a.lane(l) as f32).to_bits(), (b.lane(l) as f32).to_bits(), "F32x8 x = {:e}", x.lane(l));
+            }
+        }
+    }
 }
