@@ -187,7 +187,11 @@ impl<S, L> Scene<S, L> {
     /// The shading record of `hit` on the ray `origin + t · dir`; with `differential =
     /// Some((∂dir/∂x, ∂dir/∂y))` (a ray from a fixed origin, as from a pinhole camera) it also
     /// carries the screen-space derivatives of P, N, s and t.
-    #[inline]
+    ///
+    /// Inlined into its callers, so the record is built in the caller's slot: called, it was
+    /// returned through a temporary that the caller copied with 64-byte moves, which read
+    /// back the callee's narrower stores (a store-forwarding stall per hit).
+    #[inline(always)]
     #[must_use]
     pub fn surface_hit(
         &self,
