@@ -2774,8 +2774,7 @@ impl<'c> Cg<'c, '_> {
             }
             "reflect" => {
                 let (i, nn) = (nums(self, 0)?, nums(self, 1)?);
-                let k = self.mul(self.fc(2.0), self.dot(&i, &nn));
-                Val::Num((0..3).map(|c| self.sub(i[c], self.mul(nn[c], k))).collect())
+                Val::Num(self.reflect(&i, &nn))
             }
             "refract" => {
                 let a = flat_args(self, 0..3)?;
@@ -3062,11 +3061,16 @@ impl<'c> Cg<'c, '_> {
         let half_a2 = self.mul(self.mul(self.mul(self.fc(0.5), a), a), self.add(one, self.mul(b, b)));
         let kr = self.sel(degenerate, one, self.minmax(half_a2, one, false));
         let kt = self.sub(one, kr);
-        let k2 = self.mul(self.fc(2.0), self.dot(&iu, n));
         let mut out = vec![kr, kt];
-        out.extend((0..3).map(|c| self.sub(iu[c], self.mul(n[c], k2))));
+        out.extend(self.reflect(&iu, n));
         out.extend(self.refract(&iu, n, eta));
         out
+    }
+
+    /// anysl-core's `reflect`: `i - n·(2·(i·n))`.
+    fn reflect(&self, i: &[S<'c>], n: &[S<'c>]) -> Vec<S<'c>> {
+        let k = self.mul(self.fc(2.0), self.dot(i, n));
+        (0..3).map(|c| self.sub(i[c], self.mul(n[c], k))).collect()
     }
 
     /// `Vec3::normalize` for uniform and varying triples (dual triples use the runtime).
