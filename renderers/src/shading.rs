@@ -499,12 +499,17 @@ where
     L: LightShader,
 {
     let shader = &tracer.scene.surfaces[lanes.hits[first].surface as usize];
-    shader.visit(GroupPass::<F, S, L> { tracer, lanes, group, first, depth, _f: core::marker::PhantomData })
+    shader.visit(GroupPass::<F, S, L> { tracer: &tracer, lanes, group, first, depth, _f: core::marker::PhantomData })
 }
 
 /// [`shade_group`]'s pass, run on the concrete shader.
+///
+/// The tracer goes by reference: built by value right before the call, its 32 bytes were
+/// stored field by field and then read back by the callee as one 32-byte load, which cannot
+/// take its value from those narrower stores (a store-forwarding stall of about a tenth of a
+/// short shader's time at four lanes).
 struct GroupPass<'a, 'p, F, S, L> {
-    tracer: Tracer<'a, S, L>,
+    tracer: &'a Tracer<'a, S, L>,
     lanes: &'a Lanes<'p>,
     group: u32,
     first: usize,
@@ -518,6 +523,7 @@ impl<F: ShadingFloat, S: SurfaceShader, L: LightShader> SurfaceVisitor for Group
     #[inline(never)]
     fn visit<T: SurfaceShader>(self, shader: &T) -> Color<F> {
         let Self { tracer, lanes, group, first, depth, .. } = self;
+        let tracer = *tracer;
         let read = shader.globals_read();
         let mut ctx = SceneContext { globals: gather_globals_read::<F>(lanes.hits, group, first, read), tracer, depth };
         let mut e = Exec::with_mask(lane_mask::<F>(group));
