@@ -578,11 +578,10 @@ fn ulps(got: f32, want: f64) -> f64 {
     ((f64::from(got) - want) / ulp).abs()
 }
 
-/// `pow` at the widths that compute it in f64 lanes (4 and 8) is correctly rounded up to
-/// about 1e-3 ulp (the f64 steps' error, 1e-11 of the result, against half an ulp, 3e-8):
-/// at most 0.501 ulp from `f64::powf`, on lighting exponents, wide ranges, bases near 1
+/// `pow` within `bound` ulps of `f64::powf` (the f64-lane widths, 4 and 8: 0.501 — correctly
+/// rounded up to the f64 steps' error, below 2e-10 of the result), on lighting exponents, wide ranges, bases near 1
 /// with large exponents, results in the subnormals and at the overflow edge.
-fn pow_f64_lanes_ulps<F: Lanes>() {
+fn pow_ulps<F: Lanes>(bound: f64) {
     let mut rng = Rng::new(22);
     let families: [&PairGen; 5] = [
         &|r| (r.uniform(0.0, 1.0), r.uniform(1.0, 1000.0)),
@@ -606,7 +605,7 @@ fn pow_f64_lanes_ulps<F: Lanes>() {
             for (i, &(x, y)) in chunk.iter().enumerate() {
                 let want = f64::from(x).powf(f64::from(y));
                 let e = ulps(got.lane(i) as f32, want);
-                assert!(e <= 0.501, "pow({x:e}, {y:e}) in {}: {} against {want:e}: {e} ulp", F::NAME, got.lane(i));
+                assert!(e <= bound, "pow({x:e}, {y:e}) in {}: {} against {want:e}: {e} ulp", F::NAME, got.lane(i));
                 worst = worst.max(e);
             }
         }
@@ -683,9 +682,14 @@ macro_rules! width_tests {
                 }
             }
             #[test]
-            fn pow_in_f64_lanes_correctly_rounded() {
+            fn pow_within_ulps_of_exact() {
                 if $N != anysl_simd::kernel_consts::POW_DD_LANES as usize {
-                    pow_f64_lanes_ulps::<F>();
+                    // f64 lanes: correctly rounded up to the f64 steps' error.
+                    pow_ulps::<F>(0.501);
+                } else {
+                    // Double-f32: the logarithm's error grows with |y·log2 x| (the bound of
+                    // `pow_accuracy`); 12.45 ulp measured, on bases near 1 with large exponents.
+                    pow_ulps::<F>(13.0);
                 }
             }
             #[test]

@@ -132,10 +132,10 @@ impl<'c> Cg<'c, '_> {
     fn kneg(&self, a: V<'c>) -> V<'c> {
         self.b.build_float_neg(a, "").expect("fneg")
     }
-    /// `a·m + b`, fused when the library's is ([`kc::FUSED_MUL_ADD`]).
+    /// `a·m + b`, fused when the library's is ([`kc::FUSED_MUL_ADD`]); f32 or f64 lanes.
     fn kfma(&self, a: V<'c>, m: V<'c>, b: V<'c>) -> V<'c> {
         if kc::FUSED_MUL_ADD {
-            self.call_intr("llvm.fma", &[self.kvt().into()], &[a.into(), m.into(), b.into()]).into_vector_value()
+            self.call_intr("llvm.fma", &[a.get_type().into()], &[a.into(), m.into(), b.into()]).into_vector_value()
         } else {
             self.kadd(self.kmul(a, m), b)
         }
@@ -145,11 +145,12 @@ impl<'c> Cg<'c, '_> {
     }
     /// Polynomial `c[0] + c[1]·x + …` by Horner's rule with FMA (the library's `horner`).
     fn khorner(&self, x: V<'c>, c: &[f32]) -> V<'c> {
-        let mut acc = self.kf(c[c.len() - 1]);
-        for &ci in c[..c.len() - 1].iter().rev() {
-            acc = self.kfma(acc, x, self.kf(ci));
-        }
-        acc
+        self.horner_of(x, c.iter().map(|&v| self.kf(v)).collect())
+    }
+    /// Horner's rule over coefficient vectors `c` (lowest degree first).
+    fn horner_of(&self, x: V<'c>, c: Vec<V<'c>>) -> V<'c> {
+        let (last, rest) = c.split_last().expect("a coefficient");
+        rest.iter().rev().fold(*last, |acc, &ci| self.kfma(acc, x, ci))
     }
     fn kbits(&self, a: V<'c>) -> V<'c> {
         self.b.build_bit_cast(a, self.kit(), "").expect("bitcast").into_vector_value()
@@ -326,19 +327,8 @@ impl<'c> Cg<'c, '_> {
         let k = self.cx.i64_type().const_int(x as u64, true);
         VectorType::const_vector(&vec![k; self.t.lanes as usize])
     }
-    fn dfma(&self, a: V<'c>, m: V<'c>, b: V<'c>) -> V<'c> {
-        if kc::FUSED_MUL_ADD {
-            self.call_intr("llvm.fma", &[self.dvt().into()], &[a.into(), m.into(), b.into()]).into_vector_value()
-        } else {
-            self.kadd(self.kmul(a, m), b)
-        }
-    }
     fn dhorner(&self, x: V<'c>, c: &[f64]) -> V<'c> {
-        let mut acc = self.df(c[c.len() - 1]);
-        for &ci in c[..c.len() - 1].iter().rev() {
-            acc = self.dfma(acc, x, self.df(ci));
-        }
-        acc
+        self.horner_of(x, c.iter().map(|&v| self.df(v)).collect())
     }
     fn dbits(&self, a: V<'c>) -> V<'c> {
         self.b.build_bit_cast(a, self.dit(), "").expect("bitcast").into_vector_value()
@@ -361,8 +351,8 @@ impl<'c> Cg<'c, '_> {
         let f = self.ksub(m, self.df(1.0));
         let s = self.kdiv(f, self.kadd(f, self.df(2.0)));
         let z = self.kmul(s, s);
-        let ln_m = self.dfma(self.kmul(s, z), self.dhorner(z, &kc::LN_ATANH_P), self.kadd(s, s));
-        let l = self.dfma(ln_m, self.df(core::f64::consts::LOG2_E), ef);
+        let ln_m = self.kfma(self.kmul(s, z), self.dhorner(z, &kc::LN_ATANH_P), self.kadd(s, s));
+        let l = self.kfma(ln_m, self.df(core::f64::consts::LOG2_E), ef);
         let l = self.ksel(
             self.kcmp(OEQ, ax, self.df(0.0)),
             self.df(f64::NEG_INFINITY),
