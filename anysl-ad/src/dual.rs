@@ -327,13 +327,14 @@ impl<F: ShadingFloat> ShadingFloat for Dual<F> {
         Self::constant(F::bits_to_float_signed(h))
     }
 
-    /// The value is `f` at `F` (the out-of-line function the `F` instantiation calls, so
-    /// values match it bit for bit); the derivatives come from `f` at `Dual<F>` in a call of
-    /// its own, which is dead, and deleted, wherever the derivatives are.
+    /// The value is `f` at `F` (what the `F` instantiation computes, so values match it bit
+    /// for bit); the derivatives come from `f` at `Dual<F>` in a call of its own
+    /// ([`dual_eval`], left to the compiler to inline or not), which is dead, and deleted,
+    /// wherever the derivatives are.
     #[inline(always)]
     fn apply<P: PureFn<N>, const N: usize>(f: &P, args: [Self; N]) -> Self {
         let val = f.eval::<F>(args.map(|a| a.val));
-        let d = f.eval::<Self>(args);
+        let d = dual_eval(f, args);
         Self { val, ddx: d.ddx, ddy: d.ddy }
     }
 
@@ -361,4 +362,12 @@ impl<F: ShadingFloat> ShadingFloat for Dual<F> {
     fn upper(self, i: usize) -> f64 {
         self.val.upper(i)
     }
+}
+
+/// `f` at dual numbers: the derivative half of [`Dual::apply`]. A `PureFn` is inlined into
+/// the plain instantiations that call it; its dual form, several times larger, is left to
+/// the inliner's judgement here.
+#[inline]
+fn dual_eval<F: ShadingFloat, P: PureFn<N>, const N: usize>(f: &P, args: [Dual<F>; N]) -> Dual<F> {
+    f.eval::<Dual<F>>(args)
 }

@@ -299,12 +299,12 @@ pub trait ShadingFloat:
     /// Converts integer lanes to floats (`(i32) h` as a float).
     fn bits_to_float_signed(h: Self::Bits) -> Self;
 
-    /// `f(args)`, for library functions too large to inline into every shader (noise).
-    /// Every type but dual numbers evaluates `f` directly. Dual numbers take the value from
-    /// `f` at their inner type (exactly what that type computes) and the derivatives from a
-    /// second, separate evaluation: both calls are pure, so where a shader never reads the
-    /// derivatives (its output derivatives are dropped) the compiler deletes the second call
-    /// whole, although `f` itself is compiled out of line.
+    /// `f(args)`, for library functions whose derivatives are best taken by a separate
+    /// evaluation (noise). Every type but dual numbers evaluates `f` directly. Dual numbers
+    /// take the value from `f` at their inner type (exactly what that type computes) and the
+    /// derivatives from a second, separate evaluation: both are pure, so where a shader never
+    /// reads the derivatives (its output derivatives are dropped) the compiler deletes the
+    /// second whole, even where it is compiled out of line.
     #[inline(always)]
     fn apply<P: PureFn<N>, const N: usize>(f: &P, args: [Self; N]) -> Self {
         f.eval(args)

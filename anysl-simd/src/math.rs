@@ -76,6 +76,8 @@ pub(crate) trait Wide:
     fn select_i(m: Self, a: Self::I, b: Self::I) -> Self::I;
     /// Some lane of the mask is set.
     fn any(self) -> bool;
+    /// Every lane of the mask is set.
+    fn all(self) -> bool;
     /// Replaces the lanes selected by `m` with `f(lane)` (slow path, not vectorized).
     fn map_where(self, m: Self, f: fn(f32) -> f32) -> Self;
     /// `|x|^y` for `ax = |x|` through [`pow_mag_d`] in f64 lanes of the same count.
@@ -155,6 +157,10 @@ macro_rules! impl_wide {
             #[inline(always)]
             fn any(self) -> bool {
                 wide::$f::any(self)
+            }
+            #[inline(always)]
+            fn all(self) -> bool {
+                wide::$f::all(self)
             }
             #[cold]
             #[inline(never)]
@@ -586,6 +592,16 @@ fn pow_mag_x16(ax: wide::f32x16, y: wide::f32x16) -> wide::f32x16 {
 /// with the sign from the parity of integer y for negative x.
 #[inline(always)]
 pub(crate) fn pow<W: Wide>(x: W, y: W) -> W {
+    // Where every lane has a positive finite base (or +0 under a positive exponent) and a
+    // finite exponent — every highlight — the magnitude is the answer:
+    // `pow_mag` gives 1 for y = 0 and for x = 1 exactly, and 0 for 0^y. The sign and
+    // special-value fix-ups below cost a third of the call otherwise.
+    let zero: W = k(0.0);
+    let sign_clear = !W::from_bits(x.bits() >> 31);
+    let base_ok = sign_clear & x.lt(k(f32::INFINITY)) & (zero.lt(x) | zero.lt(y));
+    if (base_ok & abs(y).lt(k(f32::INFINITY))).all() {
+        return W::pow_mag(x, y);
+    }
     let ax = abs(x);
     let a = W::pow_mag(ax, y);
     let finite = ax.lt(k(f32::INFINITY));

@@ -1,6 +1,7 @@
 //! Shading-time probe of the Table-1 workload (`anysl bench table1` is the benchmark; this is for
 //! iterating without building the CLI): `cargo bench -p anysl-renderers --bench table1_probe`.
-//! `SHADERS=phong,checker` picks shaders, `SIZE=256` the image, `RUNS=3` the runs (median);
+//! `SHADERS=phong,checker` picks shaders, `VARIANTS=f32,f32x4,f32x4@8` the variants (first: the
+//! base of the speedups; `@n`: packets of n rays), `SIZE=256` the image, `RUNS=3` the runs (median);
 //! `SPIN=phong:f32x8` renders one variant for 5 s for `perf record`.
 
 use anysl_renderers::{render_packet_stats, scenes, PacketStats, RenderOptions, Scene};
@@ -17,6 +18,10 @@ fn render(scene: &Scene<Surface, Light>, opts: &RenderOptions, variant: &str) ->
         "f32" => render_packet_stats::<f32, _, _>(scene, opts, 8).1,
         "f32x4" => render_packet_stats::<F32x4, _, _>(scene, opts, 4).1,
         "f32x8" => render_packet_stats::<F32x8, _, _>(scene, opts, 8).1,
+        "f32@4" => render_packet_stats::<f32, _, _>(scene, opts, 4).1,
+        "f32@16" => render_packet_stats::<f32, _, _>(scene, opts, 16).1,
+        "f32x4@8" => render_packet_stats::<F32x4, _, _>(scene, opts, 8).1,
+        "f32x4@16" => render_packet_stats::<F32x4, _, _>(scene, opts, 16).1,
         _ => render_packet_stats::<F32x16, _, _>(scene, opts, 16).1,
     }
 }
@@ -35,14 +40,19 @@ fn table1_shading() {
         return;
     }
     let names = env("SHADERS", &Surface::NAMES.join(","));
-    let mut sums = [0.0f64; 4];
+    let variants_env = env("VARIANTS", "f32,f32x4,f32x8,f32x16");
+    let variants: Vec<&str> = variants_env.split(',').collect();
+    let mut sums = vec![0.0f64; variants.len()];
     let mut n = 0;
     for name in names.split(',') {
         let scene = scenes::table1(Surface::by_name(name).unwrap(), table1_lights(), size);
-        let mut times = [Vec::new(), Vec::new(), Vec::new(), Vec::new()];
+        let mut times = vec![Vec::new(); variants.len()];
+        let mut points = 0;
         for _ in 0..runs {
-            for (k, v) in ["f32", "f32x4", "f32x8", "f32x16"].into_iter().enumerate() {
-                times[k].push(render(&scene, &opts, v).shading);
+            for (k, v) in variants.iter().enumerate() {
+                let stats = render(&scene, &opts, v);
+                times[k].push(stats.shading);
+                points = stats.shaded_points;
             }
         }
         let med: Vec<f64> = times
@@ -52,19 +62,23 @@ fn table1_shading() {
                 t[t.len() / 2].as_secs_f64() * 1e3
             })
             .collect();
-        let spd: Vec<f64> = med.iter().map(|m| med[0] / m).collect();
-        for (s, x) in sums.iter_mut().zip(&spd) {
-            *s += x;
+        let mut line = format!("{name:9} {} {:7.2} ms", variants[0], med[0]);
+        for (k, v) in variants.iter().enumerate().skip(1) {
+            sums[k] += med[0] / med[k];
+            line += &format!("  {v} {:5.2}x", med[0] / med[k]);
+        }
+        line += "   ns/point";
+        for m in &med {
+            line += &format!(" {:6.2}", m * 1e6 / points.max(1) as f64);
         }
         n += 1;
-        eprintln!("{name:9} f32 {:7.2} ms  x4 {:5.2}x  x8 {:5.2}x  x16 {:5.2}x", med[0], spd[1], spd[2], spd[3]);
+        eprintln!("{line} ({points} points)");
     }
-    eprintln!(
-        "mean      x4 {:5.2}x  x8 {:5.2}x  x16 {:5.2}x",
-        sums[1] / n as f64,
-        sums[2] / n as f64,
-        sums[3] / n as f64
-    );
+    let mut line = "mean     ".to_string();
+    for (k, v) in variants.iter().enumerate().skip(1) {
+        line += &format!("  {v} {:5.2}x", sums[k] / n as f64);
+    }
+    eprintln!("{line}");
 }
 
 fn main() {

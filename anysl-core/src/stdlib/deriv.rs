@@ -75,6 +75,9 @@ pub fn deriv<F: ShadingFloat>(g: &Globals<F>, num: F, den: F) -> F {
 #[inline(always)]
 #[must_use]
 pub fn area<F: ShadingFloat>(p: Vec3<F>) -> F {
+    if !F::HAS_DERIVS {
+        return F::c(0.0);
+    }
     let px = p.map(|c| c.dx().value());
     let py = p.map(|c| c.dy().value());
     px.cross(py).length()
@@ -84,6 +87,11 @@ pub fn area<F: ShadingFloat>(p: Vec3<F>) -> F {
 #[inline(always)]
 #[must_use]
 pub fn filterwidth<F: ShadingFloat>(x: F) -> F {
+    // Without derivatives the width is 0 — said here rather than left to constant folding,
+    // which vector comparisons downstream (`filterstep`) do not get.
+    if !F::HAS_DERIVS {
+        return F::c(0.0);
+    }
     x.dx().value().abs() + x.dy().value().abs()
 }
 
@@ -108,6 +116,9 @@ pub fn calculatenormal<F: ShadingFloat>(g: &Globals<F>, p: Vec3<F>) -> Vec3<F> {
 #[inline(always)]
 #[must_use]
 pub fn filterstep<F: ShadingFloat>(edge: F, x: F) -> F {
+    if !F::HAS_DERIVS {
+        return step(edge, x);
+    }
     let w = filterwidth(x);
     let z = F::c(0.0);
     let has = w.gt(z);

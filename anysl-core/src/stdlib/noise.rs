@@ -232,9 +232,9 @@ impl<F: Copy> NoiseDomain<F> {
 }
 
 /// Signed noise of a domain of `dims` dimensions, optionally periodic (`period_dims > 0`),
-/// as a [`PureFn`] of the four coordinates followed by the four period coordinates: the one
-/// out-of-line noise function, so that dual numbers can take its value and its derivatives
-/// from separate calls (see [`ShadingFloat::apply`]).
+/// as a [`PureFn`] of the four coordinates followed by the four period coordinates, so that
+/// dual numbers can take its value and its derivatives from separate calls (see
+/// [`ShadingFloat::apply`]).
 #[derive(Clone, Copy, Debug)]
 struct SignedNoise {
     dims: u8,
@@ -243,7 +243,11 @@ struct SignedNoise {
 }
 
 impl PureFn<8> for SignedNoise {
-    #[inline]
+    // Inlined into every caller: out of line, the eight coordinates cross the call in
+    // memory, the domain and period dimensions (constants at every call site) become
+    // run-time branches, and whether the inliner takes it changes from build to build
+    // (it is the bulk of a noise shader's time).
+    #[inline(always)]
     fn eval<G: ShadingFloat>(&self, a: [G; 8]) -> G {
         let d = NoiseDomain::from_coords(self.dims, [a[0], a[1], a[2], a[3]]);
         let period =
