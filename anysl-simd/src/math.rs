@@ -597,8 +597,8 @@ pub(crate) fn pow<W: Wide>(x: W, y: W) -> W {
     // `pow_mag` gives 1 for y = 0 and for x = 1 exactly, and 0 for 0^y. The sign and
     // special-value fix-ups below cost a third of the call otherwise.
     let zero: W = k(0.0);
-    let sign_clear = !W::from_bits(x.bits() >> 31);
-    let base_ok = sign_clear & x.lt(k(f32::INFINITY)) & (zero.lt(x) | zero.lt(y));
+    let sign = W::from_bits(x.bits() >> 31);
+    let base_ok = !sign & x.lt(k(f32::INFINITY)) & (zero.lt(x) | zero.lt(y));
     if (base_ok & abs(y).lt(k(f32::INFINITY))).all() {
         return W::pow_mag(x, y);
     }
@@ -608,7 +608,7 @@ pub(crate) fn pow<W: Wide>(x: W, y: W) -> W {
     let y_int = y.floor().eq(y); // true for ±inf, false for NaN
     let half = y * k(0.5);
     let y_odd = y_int & !half.floor().eq(half);
-    let x_neg = W::from_bits(x.bits() >> 31) & !is_nan(x);
+    let x_neg = sign & !is_nan(x);
     let a = xor_sign(a, (x_neg & y_odd).bits() & W::splat_i(SIGN));
     let domain_error = x.lt(k(0.0)) & finite & !y_int;
     let a = W::select(domain_error, k(f32::NAN), a);
