@@ -595,13 +595,23 @@ pub(crate) fn pow<W: Wide>(x: W, y: W) -> W {
     // Where every lane has a positive finite base (or +0 under a positive exponent) and a
     // finite exponent — every highlight — the magnitude is the answer:
     // `pow_mag` gives 1 for y = 0 and for x = 1 exactly, and 0 for 0^y. The sign and
-    // special-value fix-ups below cost a third of the call otherwise.
+    // special-value fix-ups cost a third of the call otherwise.
     let zero: W = k(0.0);
     let sign = W::from_bits(x.bits() >> 31);
     let base_ok = !sign & x.lt(k(f32::INFINITY)) & (zero.lt(x) | zero.lt(y));
     if (base_ok & abs(y).lt(k(f32::INFINITY))).all() {
         return W::pow_mag(x, y);
     }
+    pow_general(x, y, sign)
+}
+
+/// [`pow`] for vectors with a negative, infinite or NaN base or exponent in some lane, out of
+/// line: inlined, this second copy of the polynomials doubled the code of every light loop
+/// (twice over where the loop body is instantiated for full and partial masks) for a path
+/// that ordinary highlights never take.
+#[cold]
+#[inline(never)]
+fn pow_general<W: Wide>(x: W, y: W, sign: W) -> W {
     let ax = abs(x);
     let a = W::pow_mag(ax, y);
     let finite = ax.lt(k(f32::INFINITY));

@@ -1,10 +1,14 @@
 //! Shading-time probe of the Table-1 workload (`anysl bench table1` is the benchmark; this is for
 //! iterating without building the CLI): `cargo bench -p anysl-renderers --bench table1_probe`.
 //! `SHADERS=phong,checker` picks shaders, `VARIANTS=f32,f32x4,f32x4@8` the variants (first: the
-//! base of the speedups; `@n`: packets of n rays), `SIZE=256` the image, `RUNS=3` the runs (median);
+//! base of the speedups; `@n`: packets of n rays; `native`: the hand-written f32x8 kernels), `SIZE=256` the image, `RUNS=3` the runs (median);
 //! `SPIN=phong:f32x8` renders one variant for 5 s for `perf record`.
 
-use anysl_renderers::{render_packet_stats, scenes, PacketStats, RenderOptions, Scene};
+use anysl_core::{Color, Globals, SurfaceOutput};
+use anysl_renderers::{
+    render_packet_stats, render_packet_with, scenes, KernelShading, PacketStats, PlainShading, RenderOptions, Scene,
+};
+use anysl_shaders::native::{checker_x8, native_lights, plastic_x8, PointsX8};
 use anysl_shaders::{table1_lights, Light, Surface};
 use anysl_simd::{F32x16, F32x4, F32x8};
 use std::time::{Duration, Instant};
@@ -22,6 +26,36 @@ fn render(scene: &Scene<Surface, Light>, opts: &RenderOptions, variant: &str) ->
         "f32@16" => render_packet_stats::<f32, _, _>(scene, opts, 16).1,
         "f32x4@8" => render_packet_stats::<F32x4, _, _>(scene, opts, 8).1,
         "f32x4@16" => render_packet_stats::<F32x4, _, _>(scene, opts, 16).1,
+        "native" => {
+            // The hand-written f32x8 kernels (phong, checker), as `anysl bench table1` runs them.
+            let (lights, ambient) = native_lights(&table1_lights()).unwrap();
+            let kernel = |s: &Surface, g: &Globals<F32x8>| {
+                let v3 = |x: F32x8, y: F32x8, z: F32x8| [x.0, y.0, z.0];
+                let x = PointsX8 {
+                    p: v3(g.P.x, g.P.y, g.P.z),
+                    n: v3(g.N.x, g.N.y, g.N.z),
+                    i: v3(g.I.x, g.I.y, g.I.z),
+                    s: g.s.0,
+                    t: g.t.0,
+                    cs: v3(g.Cs.r, g.Cs.g, g.Cs.b),
+                    os: v3(g.Os.r, g.Os.g, g.Os.b),
+                };
+                let (ci, oi) = match s {
+                    Surface::Plastic(p) => plastic_x8(p, &lights, ambient, &x),
+                    Surface::Checker(c) => checker_x8(c, &lights, ambient, &x),
+                    _ => return None,
+                };
+                let color = |c: [wide::f32x8; 3]| Color::new(F32x8(c[0]), F32x8(c[1]), F32x8(c[2]));
+                Some(SurfaceOutput { Ci: color(ci), Oi: color(oi) })
+            };
+            render_packet_with::<F32x8, _, _, _>(
+                scene,
+                opts,
+                8,
+                KernelShading { kernel: &kernel, fallback: PlainShading },
+            )
+            .1
+        }
         _ => render_packet_stats::<F32x16, _, _>(scene, opts, 16).1,
     }
 }
@@ -33,10 +67,12 @@ fn table1_shading() {
     if let Ok(spin) = std::env::var("SPIN") {
         let (name, variant) = spin.split_once(':').unwrap();
         let scene = scenes::table1(Surface::by_name(name).unwrap(), table1_lights(), size);
-        let t = Instant::now();
+        let (t, mut frames, mut shading) = (Instant::now(), 0u32, Duration::ZERO);
         while t.elapsed() < Duration::from_secs(5) {
-            let _ = render(&scene, &opts, variant);
+            shading += render(&scene, &opts, variant).shading;
+            frames += 1;
         }
+        eprintln!("{frames} frames, shading {:.3} ms/frame", shading.as_secs_f64() * 1e3 / f64::from(frames));
         return;
     }
     let names = env("SHADERS", &Surface::NAMES.join(","));
