@@ -68,9 +68,9 @@ pub use soa::{pack, pack_color, pack_vec3, unpack, unpack_color, unpack_vec3, La
 /// once, so both compute the same bits. The algorithms are those of `src/math.rs`.
 pub mod kernel_consts {
     pub use crate::math::{
-        ASIN_A, ATAN_P, COS_C, EXP2_Q, EXP2_TAYLOR, FRAC_2_PI, LN2_HI16, LN2_LO16, LN_ATANH_P, LOG2E_HI, LOG2E_LO,
-        LOG_L, MAGIC_1P5_2P52, PIO2_1, PIO2_2, PIO2_3, PIO2_LO, PI_HI, PI_LO, POW_DD_LANES, POW_T_MAX, POW_T_MIN,
-        SIN_S, SQRT_HALF_BITS_F64, TAN_T, TRIG_VECTOR_LIMIT,
+        ASIN_A, ATAN_P, COS_C, EXP2_D, EXP2_Q, FRAC_2_PI, LN2_HI16, LN2_LO16, LN_ATANH_P, LOG2E_HI, LOG2E_LO, LOG_L,
+        MAGIC_1P5_2P52, PIO2_1, PIO2_2, PIO2_3, PIO2_LO, PI_HI, PI_LO, POW_DD_LANES, POW_T_MAX, POW_T_MIN, SIN_S,
+        SQRT_HALF_BITS_F64, TAN_T, TRIG_VECTOR_LIMIT,
     };
     /// The kernels' `fma` is one fused operation (a build with FMA); without FMA, `wide`
     /// computes `a·b + c` with two roundings.

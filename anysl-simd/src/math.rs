@@ -481,25 +481,33 @@ pub const MAGIC_1P5_2P52: f64 = 6_755_399_441_055_744.0;
 /// [√½, √2).
 pub const SQRT_HALF_BITS_F64: i64 = 0x3fe6_a09e_667f_3bcd;
 
-/// `ln m = 2s + s·z·P(z)`, `s = (m-1)/(m+1)`, `z = s²`, `P(z) = 2/3 + 2z/5 + … + 2z⁵/13` —
-/// the series `ln m = 2·atanh s = 2(s + s³/3 + s⁵/5 + …)` (Abramowitz & Stegun 4.1.27) cut
-/// after s¹³: for m in [√½, √2), |s| <= 0.1716 and the first omitted term is below 1.5e-12
-/// of the sum (pow multiplies the logarithm's relative error by |y·log2 x| <= 151·ln 2).
-pub const LN_ATANH_P: [f64; 6] = [2.0 / 3.0, 2.0 / 5.0, 2.0 / 7.0, 2.0 / 9.0, 2.0 / 11.0, 2.0 / 13.0];
+/// `ln m = 2s + s·z·P(z)`, `s = (m-1)/(m+1)`, `z = s²`: the series `ln m = 2·atanh s =
+/// 2(s + s³/3 + s⁵/5 + …)` (Abramowitz & Stegun 4.1.27) with its tail `P(z) = 2/3 + 2z/5 +
+/// …` replaced by a degree-4 polynomial interpolating it at the Chebyshev nodes of
+/// z in [0, 0.02944] (m in [√½, √2), |s| <= 0.1716): relative error of `ln m` below 1.1e-13
+/// (`tools/polyfit_f64.py`; the series cut after s¹³ took one more term for 1.3e-12). pow
+/// multiplies the logarithm's relative error by |y·log2 x| <= 151·ln 2.
+pub const LN_ATANH_P: [f64; 5] = [
+    0.666_666_666_673_754_5,
+    0.399_999_987_968_486_74,
+    0.285_717_546_357_327_6,
+    0.221_913_944_931_750_57,
+    0.193_627_768_367_475_33,
+];
 
-/// `2^r = Σ (r·ln 2)^k / k!`, k = 0..9 (Taylor), for |r| <= 0.5: the first omitted term is
-/// below 1e-11 of the sum.
-pub const EXP2_TAYLOR: [f64; 10] = [
+/// `2^r` for |r| <= 0.5 as a degree-8 polynomial interpolating it at the Chebyshev nodes
+/// (`tools/polyfit_f64.py`): relative error below 1.1e-12 (the Taylor series needs degree 9
+/// for 9.4e-12).
+pub const EXP2_D: [f64; 9] = [
     1.0,
-    0.693_147_180_559_945_3,
-    0.240_226_506_959_100_7,
-    0.055_504_108_664_821_576,
-    0.009_618_129_107_628_477,
-    0.001_333_355_814_642_844_1,
-    0.000_154_035_303_933_816_06,
-    1.525_273_380_405_983_8e-5,
-    1.321_548_679_014_430_5e-6,
-    1.017_808_600_923_969_6e-7,
+    0.693_147_180_545_911,
+    0.240_226_506_958_128_33,
+    0.055_504_109_412_957_17,
+    0.009_618_129_159_464_759,
+    0.001_333_345_048_181_932_7,
+    0.000_154_034_557_927_496_44,
+    1.531_010_238_038_351e-5,
+    1.325_524_079_720_696_6e-6,
 ];
 
 /// Largest f64 exponent `y·log2|x|` passed to the exponential; beyond it the result
@@ -543,7 +551,7 @@ fn pow_mag_d<D: WideD>(ax: D, y: D) -> D {
     // facing away from a light.
     let tiny = t.lt(c(POW_T_MIN));
     let n = t.round_even();
-    let p = horner_d(t - n, EXP2_TAYLOR);
+    let p = horner_d(t - n, EXP2_D);
     // 2^n from the bits of n + 1.5·2^52 + 1023 (n in [-151, 130]).
     let scale = (n + c(MAGIC_1P5_2P52 + 1023.0)).shl_bits(52);
     D::select(tiny, c(0.0), p * scale)

@@ -362,7 +362,7 @@ impl<'c> Cg<'c, '_> {
         let t = self.ksel(self.kcmp(OLT, self.df(kc::POW_T_MAX), t), self.df(kc::POW_T_MAX), t);
         let tiny = self.kcmp(OLT, t, self.df(kc::POW_T_MIN));
         let n = self.kintr("llvm.roundeven", t);
-        let p = self.dhorner(self.ksub(t, n), &kc::EXP2_TAYLOR);
+        let p = self.dhorner(self.ksub(t, n), &kc::EXP2_D);
         let nb = self.dbits(self.kadd(n, self.df(magic + 1023.0)));
         let scale = self.dfrom_bits(self.kint('<', nb, self.di(52)));
         let a = self.ksel(tiny, self.df(0.0), self.kmul(p, scale));
