@@ -14,11 +14,11 @@
 //! (tracing included) are reported beside them. Errors are against an `f64` render of the
 //! same packets.
 
-use anysl_core::{Color, Globals, SurfaceOutput};
+use anysl_core::{Globals, SurfaceOutput};
 use anysl_renderers::{
     render_packet_stats, render_packet_with, scenes, Image, KernelShading, PlainShading, RenderOptions, Scene,
 };
-use anysl_shaders::native::{checker_x8, native_lights, plastic_x8, NativePointLight, PointsX8};
+use anysl_shaders::native::{native_lights, shade_x8, NativePointLight};
 use anysl_shaders::{table1_lights, Light, Surface};
 use anysl_simd::{F32x16, F32x4, F32x8};
 use indicatif::ProgressBar;
@@ -73,23 +73,7 @@ struct Native {
 
 impl Native {
     fn shade(&self, surface: &Surface, g: &Globals<F32x8>) -> Option<SurfaceOutput<F32x8>> {
-        let v3 = |x: F32x8, y: F32x8, z: F32x8| [x.0, y.0, z.0];
-        let x = PointsX8 {
-            p: v3(g.P.x, g.P.y, g.P.z),
-            n: v3(g.N.x, g.N.y, g.N.z),
-            i: v3(g.I.x, g.I.y, g.I.z),
-            s: g.s.0,
-            t: g.t.0,
-            cs: v3(g.Cs.r, g.Cs.g, g.Cs.b),
-            os: v3(g.Os.r, g.Os.g, g.Os.b),
-        };
-        let (ci, oi) = match surface {
-            Surface::Plastic(p) => plastic_x8(p, &self.lights, self.ambient, &x),
-            Surface::Checker(c) => checker_x8(c, &self.lights, self.ambient, &x),
-            _ => return None,
-        };
-        let color = |c: [wide::f32x8; 3]| Color::new(F32x8(c[0]), F32x8(c[1]), F32x8(c[2]));
-        Some(SurfaceOutput { Ci: color(ci), Oi: color(oi) })
+        shade_x8(surface, &self.lights, self.ambient, g)
     }
 }
 

@@ -4,11 +4,11 @@
 //! base of the speedups; `@n`: packets of n rays; `native`: the hand-written f32x8 kernels), `SIZE=256` the image, `RUNS=3` the runs (median);
 //! `SPIN=phong:f32x8` renders one variant for 5 s for `perf record`.
 
-use anysl_core::{Color, Globals, SurfaceOutput};
+use anysl_core::Globals;
 use anysl_renderers::{
     render_packet_stats, render_packet_with, scenes, KernelShading, PacketStats, PlainShading, RenderOptions, Scene,
 };
-use anysl_shaders::native::{checker_x8, native_lights, plastic_x8, PointsX8};
+use anysl_shaders::native::{native_lights, shade_x8};
 use anysl_shaders::{table1_lights, Light, Surface};
 use anysl_simd::{F32x16, F32x4, F32x8};
 use std::time::{Duration, Instant};
@@ -29,25 +29,7 @@ fn render(scene: &Scene<Surface, Light>, opts: &RenderOptions, variant: &str) ->
         "native" => {
             // The hand-written f32x8 kernels (phong, checker), as `anysl bench table1` runs them.
             let (lights, ambient) = native_lights(&table1_lights()).unwrap();
-            let kernel = |s: &Surface, g: &Globals<F32x8>| {
-                let v3 = |x: F32x8, y: F32x8, z: F32x8| [x.0, y.0, z.0];
-                let x = PointsX8 {
-                    p: v3(g.P.x, g.P.y, g.P.z),
-                    n: v3(g.N.x, g.N.y, g.N.z),
-                    i: v3(g.I.x, g.I.y, g.I.z),
-                    s: g.s.0,
-                    t: g.t.0,
-                    cs: v3(g.Cs.r, g.Cs.g, g.Cs.b),
-                    os: v3(g.Os.r, g.Os.g, g.Os.b),
-                };
-                let (ci, oi) = match s {
-                    Surface::Plastic(p) => plastic_x8(p, &lights, ambient, &x),
-                    Surface::Checker(c) => checker_x8(c, &lights, ambient, &x),
-                    _ => return None,
-                };
-                let color = |c: [wide::f32x8; 3]| Color::new(F32x8(c[0]), F32x8(c[1]), F32x8(c[2]));
-                Some(SurfaceOutput { Ci: color(ci), Oi: color(oi) })
-            };
+            let kernel = |s: &Surface, g: &Globals<F32x8>| shade_x8(s, &lights, ambient, g);
             render_packet_with::<F32x8, _, _, _>(
                 scene,
                 opts,

@@ -12,10 +12,11 @@
 //!
 //! Inputs are assumed well formed: nonzero `N` and `I`, lights not at a shading point.
 
-use crate::dispatch::Light;
+use crate::dispatch::{Light, Surface};
 use crate::lights::PointLight;
 use crate::surfaces::{Checker, Plastic};
-use anysl_core::ShadingFloat;
+use anysl_core::{Color, Globals, ShadingFloat, SurfaceOutput};
+use anysl_simd::F32x8;
 use wide::f32x8;
 
 /// Three lanes-of-eight components: a point, vector, normal or colour for 8 shading points.
@@ -38,6 +39,44 @@ pub struct PointsX8 {
     pub cs: V3x8,
     /// Surface opacities `Os`.
     pub os: V3x8,
+}
+
+impl PointsX8 {
+    /// The inputs of a packet of eight points from its globals.
+    #[inline(always)]
+    #[must_use]
+    pub fn from_globals(g: &Globals<F32x8>) -> Self {
+        let v3 = |x: F32x8, y: F32x8, z: F32x8| [x.0, y.0, z.0];
+        Self {
+            p: v3(g.P.x, g.P.y, g.P.z),
+            n: v3(g.N.x, g.N.y, g.N.z),
+            i: v3(g.I.x, g.I.y, g.I.z),
+            s: g.s.0,
+            t: g.t.0,
+            cs: v3(g.Cs.r, g.Cs.g, g.Cs.b),
+            os: v3(g.Os.r, g.Os.g, g.Os.b),
+        }
+    }
+}
+
+/// The hand-written kernel of `surface` on a packet of eight points — [`plastic_x8`] for
+/// phong (plastic), [`checker_x8`] for checker — as `Ci`, `Oi`; `None` for every other shader.
+#[inline]
+#[must_use]
+pub fn shade_x8(
+    surface: &Surface,
+    lights: &[NativePointLight],
+    ambient: [f32; 3],
+    g: &Globals<F32x8>,
+) -> Option<SurfaceOutput<F32x8>> {
+    let x = PointsX8::from_globals(g);
+    let (ci, oi) = match surface {
+        Surface::Plastic(p) => plastic_x8(p, lights, ambient, &x),
+        Surface::Checker(c) => checker_x8(c, lights, ambient, &x),
+        _ => return None,
+    };
+    let color = |c: V3x8| Color::new(F32x8(c[0]), F32x8(c[1]), F32x8(c[2]));
+    Some(SurfaceOutput { Ci: color(ci), Oi: color(oi) })
 }
 
 /// A point light for the native kernels: [`PointLight`] with `intensity·lightcolor` folded.
