@@ -1,6 +1,6 @@
-//! Packet traversal (RTfact-like): up to 16 rays walk one binary BVH together, each node's
-//! box and each leaf's triangles tested against every ray of the packet at once in the lanes
-//! of a `wide` vector ([`RayLanes`]). Coherent rays — a camera packet over a pixel block,
+//! Packet traversal (RTfact-like): up to 16 rays walk one 4-wide BVH together, each child
+//! box of a node and each leaf's triangles tested against every ray of the packet at once in
+//! the lanes of a `wide` vector ([`RayLanes`]). Coherent rays — a camera packet over a pixel block,
 //! the refracted rays of that block, shadow rays towards one light — visit nearly the same
 //! nodes, so a packet costs little more than one of its rays.
 //!
@@ -18,8 +18,8 @@ use wide::{f32x16, f32x4, f32x8};
 /// The most rays a packet holds.
 pub const MAX_PACKET: usize = 16;
 
-/// Entries of the traversal stack; deeper trees are traced ray by ray (see
-/// [`PacketBvh::usable`]).
+/// Entries of the traversal stack kept in place; a deeper tree (degenerate input) walks
+/// with a stack on the heap.
 const STACK: usize = 128;
 
 /// Up to [`MAX_PACKET`] rays traced together: ray `i` is `origins[i] + t · dirs[i]` with
@@ -70,24 +70,41 @@ impl RayPacket {
     }
 }
 
-/// A node of the packet BVH (32 bytes): its box, and either two children at `first` and
-/// `first + 1` (`count == 0`) or `count` triangles from `first`.
-#[derive(Clone, Copy, Debug, Default)]
-#[repr(C, align(32))]
+/// Children per node of the packet BVH.
+const ARITY: usize = 4;
+
+/// Marks an unused child slot (`count`); the used slots come first.
+const EMPTY: u32 = u32::MAX;
+
+/// A node of the packet BVH (128 bytes, two cache lines): the boxes of up to [`ARITY`]
+/// children side by side, axis by axis, and for child `j` either an inner node at
+/// `first[j]` (`count[j] == 0`) or `count[j]` triangles from `first[j]`. The tree is the
+/// binary one obvhs builds with pairs of levels merged: half the nodes on a ray's way down,
+/// so half the dependent loads and data-dependent branches a walk waits on, while the box
+/// tests of one node's children are independent of each other.
+#[derive(Clone, Copy, Debug)]
+#[repr(C, align(64))]
 struct Node {
-    min: [f32; 3],
-    count: u32,
-    max: [f32; 3],
-    first: u32,
+    min: [[f32; ARITY]; 3],
+    max: [[f32; ARITY]; 3],
+    first: [u32; ARITY],
+    count: [u32; ARITY],
 }
 
-/// The binary BVH that packets traverse, triangles in leaf order.
+impl Default for Node {
+    fn default() -> Self {
+        Self { min: [[0.0; ARITY]; 3], max: [[0.0; ARITY]; 3], first: [0; ARITY], count: [EMPTY; ARITY] }
+    }
+}
+
+/// The packet BVH, triangles in leaf order.
 #[derive(Clone, Debug, Default)]
 pub(super) struct PacketBvh {
+    /// Node 0 is the root.
     nodes: Vec<Node>,
     tris: Vec<PackedTri>,
-    /// Whether the tree fits the traversal stack.
-    usable: bool,
+    /// Stack entries a walk may need.
+    stack_need: usize,
 }
 
 /// `(a × b)` per lane, products and differences rounded one by one.
@@ -177,13 +194,13 @@ impl<W: RayLanes> Lanes<W> {
         W::from_fn(|i| if (rays.active >> i) & 1 != 0 { rays.tmax[i] } else { f32::NEG_INFINITY })
     }
 
-    /// The lanes whose ray overlaps `node`'s box within `(tmin, tfar)` (bits), and where
-    /// each ray enters it.
+    /// The lanes whose ray overlaps the box of child `j` of `node` within `(tmin, tfar)`
+    /// (bits), and where each ray enters it.
     #[inline(always)]
-    fn enter(&self, node: &Node, tfar: W) -> (u32, W) {
+    fn enter(&self, node: &Node, j: usize, tfar: W) -> (u32, W) {
         let slab = |k: usize| {
-            let a = (W::splat(node.min[k]) - self.o[k]) * self.inv[k];
-            let b = (W::splat(node.max[k]) - self.o[k]) * self.inv[k];
+            let a = (W::splat(node.min[k][j]) - self.o[k]) * self.inv[k];
+            let b = (W::splat(node.max[k][j]) - self.o[k]) * self.inv[k];
             (a.min_or(b), a.max_or(b))
         };
         let ((nx, fx), (ny, fy), (nz, fz)) = (slab(0), slab(1), slab(2));
@@ -195,30 +212,73 @@ impl<W: RayLanes> Lanes<W> {
 
 impl PacketBvh {
     /// The packet form of `bvh` over `tris` (scene order; `bvh.primitive_indices` maps leaf
-    /// slots to them).
+    /// slots to them): each node takes the children of a binary node, and where fewer than
+    /// [`ARITY`], opens the inner child with the largest surface (the one most rays enter)
+    /// in its place, until it has [`ARITY`] children or only leaves.
     pub(super) fn new(bvh: &Bvh2, tris: &[PackedTri]) -> Self {
-        if bvh.nodes.is_empty() || tris.is_empty() {
+        let Some(root) = bvh.nodes.first() else { return Self::default() };
+        if tris.is_empty() {
             return Self::default();
         }
-        let nodes: Vec<Node> = bvh
-            .nodes
-            .iter()
-            .map(|n| Node {
-                min: n.aabb.min.to_array(),
-                count: n.prim_count,
-                max: n.aabb.max.to_array(),
-                first: n.first_index,
-            })
-            .collect();
+        let area = |i: u32| {
+            let e = bvh.nodes[i as usize].aabb.max - bvh.nodes[i as usize].aabb.min;
+            e.x * e.y + e.y * e.z + e.z * e.x
+        };
+        let mut nodes = vec![Node::default()];
+        // (binary node, packet node it becomes, depth of that node)
+        let mut todo = vec![(0u32, 0usize, 0usize)];
+        let mut deepest = 0;
+        if root.prim_count > 0 {
+            // A lone leaf: a root with one child.
+            let n = &mut nodes[0];
+            for k in 0..3 {
+                n.min[k][0] = root.aabb.min[k];
+                n.max[k][0] = root.aabb.max[k];
+            }
+            (n.first[0], n.count[0]) = (root.first_index, root.prim_count);
+            todo.clear();
+        }
+        while let Some((binary, at, depth)) = todo.pop() {
+            deepest = deepest.max(depth);
+            let b = &bvh.nodes[binary as usize];
+            let mut kids = [0; ARITY];
+            (kids[0], kids[1]) = (b.first_index, b.first_index + 1);
+            let mut len = 2;
+            while len < ARITY {
+                let open = (0..len)
+                    .filter(|&k| bvh.nodes[kids[k] as usize].prim_count == 0)
+                    .max_by(|&x, &y| area(kids[x]).total_cmp(&area(kids[y])));
+                let Some(k) = open else { break };
+                let first = bvh.nodes[kids[k] as usize].first_index;
+                (kids[k], kids[len]) = (first, first + 1);
+                len += 1;
+            }
+            let mut node = Node::default();
+            for (j, &kid) in kids[..len].iter().enumerate() {
+                let c = &bvh.nodes[kid as usize];
+                for k in 0..3 {
+                    node.min[k][j] = c.aabb.min[k];
+                    node.max[k][j] = c.aabb.max[k];
+                }
+                if c.prim_count > 0 {
+                    (node.first[j], node.count[j]) = (c.first_index, c.prim_count);
+                } else {
+                    (node.first[j], node.count[j]) = (nodes.len() as u32, 0);
+                    todo.push((kid, nodes.len(), depth + 1));
+                    nodes.push(Node::default());
+                }
+            }
+            nodes[at] = node;
+        }
         let leaf_tris = bvh.primitive_indices.iter().map(|&i| tris[i as usize]).collect();
-        let usable = depth(&nodes) < STACK;
-        Self { nodes, tris: leaf_tris, usable }
+        // A walk keeps at most ARITY − 1 waiting children per level above it, plus the
+        // children of the node it tests.
+        Self { nodes, tris: leaf_tris, stack_need: (deepest + 1) * ARITY }
     }
 
-    /// Whether packets can traverse this tree (it is not empty and not deeper than the
-    /// stack); otherwise callers trace ray by ray.
+    /// Whether there is a tree to walk (the scene has triangles).
     pub(super) fn usable(&self) -> bool {
-        self.usable
+        !self.nodes.is_empty()
     }
 
     /// The closest hit of every active ray: bits of the rays that hit, their hits in
@@ -232,6 +292,16 @@ impl PacketBvh {
         }
     }
 
+    /// [`PacketBvh::closest_hits`] of a packet whose only ray is ray 0, in plain `f32`.
+    pub(super) fn closest_single(&self, rays: &RayPacket, out: &mut [Hit; MAX_PACKET]) -> u32 {
+        self.closest::<f32>(rays, out)
+    }
+
+    /// [`PacketBvh::occluded`] of a packet whose only ray is ray 0, in plain `f32`.
+    pub(super) fn occluded_single(&self, rays: &RayPacket) -> u32 {
+        self.any_hit::<f32>(rays)
+    }
+
     /// The active rays that some triangle blocks (any hit), as bits.
     pub(super) fn occluded(&self, rays: &RayPacket) -> u32 {
         match rays.span() {
@@ -243,58 +313,78 @@ impl PacketBvh {
     }
 
     /// Walks the tree for the rays of `lanes` with interval ends `far`: every leaf triangle
-    /// whose node some ray enters goes to `visit(triangle, &mut far)`, which may shorten the
-    /// intervals and says what it did. Both children of an inner node are tested
-    /// at once; the one most rays enter first is walked first, the other waits on the stack
-    /// and is tested again when popped if the intervals have shortened since.
+    /// whose box some ray enters goes to `visit(triangle, &mut far)`, which may shorten the
+    /// intervals and says what it did. All children of a node are tested at once and wait on
+    /// the stack nearest on top, by where ray `rep` enters them; a waiting child is tested
+    /// again when popped if the intervals have shortened since.
     #[inline(always)]
-    fn walk<W: RayLanes>(&self, lanes: &Lanes<W>, mut far: W, mut visit: impl FnMut(&PackedTri, &mut W) -> Visit) {
-        // Stack entries: a node whose box some ray entered, and the `epoch` it was tested in.
-        let mut stack = [(0u32, 0u32); STACK];
+    fn walk<W: RayLanes>(
+        &self,
+        lanes: &Lanes<W>,
+        mut far: W,
+        rep: usize,
+        mut visit: impl FnMut(&PackedTri, &mut W) -> Visit,
+    ) {
+        // Stack entries: child `r % ARITY` of node `r / ARITY`, whose box some ray entered,
+        // and the `epoch` it was tested in.
+        let (mut in_place, mut on_heap) = ([(0u32, 0u32); STACK], Vec::new());
+        let stack: &mut [(u32, u32)] = if self.stack_need <= STACK {
+            &mut in_place
+        } else {
+            on_heap.resize(self.stack_need, (0, 0));
+            &mut on_heap
+        };
         let mut sp = 0;
         let mut epoch = 0u32;
-        if lanes.enter(&self.nodes[0], far).0 == 0 {
-            return;
-        }
         let mut node = 0u32;
         loop {
             let n = &self.nodes[node as usize];
-            if n.count == 0 {
-                let (ia, ib) = (n.first, n.first + 1);
-                let (ma, near_a) = lanes.enter(&self.nodes[ia as usize], far);
-                let (mb, near_b) = lanes.enter(&self.nodes[ib as usize], far);
-                if ma != 0 && mb != 0 {
-                    let both = ma & mb;
-                    let a_first = (W::bits(near_a.le(near_b)) & both).count_ones() * 2 >= both.count_ones();
-                    let (first, second) = if a_first { (ia, ib) } else { (ib, ia) };
-                    stack[sp] = (second, epoch);
-                    sp += 1;
-                    node = first;
-                    continue;
+            // The entered children, nearest last.
+            let mut found = [(0.0f32, 0u32); ARITY];
+            let mut k = 0;
+            for j in 0..ARITY {
+                if n.count[j] == EMPTY {
+                    break;
                 }
-                if ma | mb != 0 {
-                    node = if ma != 0 { ia } else { ib };
-                    continue;
-                }
-            } else {
-                for slot in n.first..n.first + n.count {
-                    match visit(&self.tris[slot as usize], &mut far) {
-                        Visit::Missed => {}
-                        Visit::Shortened => epoch += 1,
-                        Visit::Done => return,
+                let (m, near) = lanes.enter(n, j, far);
+                if m != 0 {
+                    let key = near.lane(rep);
+                    let mut at = k;
+                    while at > 0 && found[at - 1].0 < key {
+                        found[at] = found[at - 1];
+                        at -= 1;
                     }
+                    found[at] = (key, node * ARITY as u32 + j as u32);
+                    k += 1;
                 }
             }
-            // Next: the nearest waiting node some ray still enters.
+            for &(_, r) in &found[..k] {
+                stack[sp] = (r, epoch);
+                sp += 1;
+            }
+            // Next: the nearest waiting child some ray still enters; leaves on the way are
+            // visited.
             loop {
                 if sp == 0 {
                     return;
                 }
                 sp -= 1;
-                let (next, tested) = stack[sp];
-                if tested == epoch || lanes.enter(&self.nodes[next as usize], far).0 != 0 {
-                    node = next;
+                let (r, tested) = stack[sp];
+                let (parent, j) = (&self.nodes[(r / ARITY as u32) as usize], (r % ARITY as u32) as usize);
+                if tested != epoch && lanes.enter(parent, j, far).0 == 0 {
+                    continue;
+                }
+                let (first, count) = (parent.first[j], parent.count[j]);
+                if count == 0 {
+                    node = first;
                     break;
+                }
+                for slot in first..first + count {
+                    match visit(&self.tris[slot as usize], &mut far) {
+                        Visit::Missed => {}
+                        Visit::Shortened => epoch += 1,
+                        Visit::Done => return,
+                    }
                 }
             }
         }
@@ -307,7 +397,7 @@ impl PacketBvh {
         let mut t_best = W::splat(0.0);
         let mut prim = [u32::MAX; MAX_PACKET];
         let mut found = 0u32;
-        self.walk(&lanes, Lanes::<W>::far(rays), |tri, far| {
+        self.walk(&lanes, Lanes::<W>::far(rays), rays.active.trailing_zeros() as usize, |tri, far| {
             let (hit, t, b1, b2) = tri_test(tri, lanes.o, lanes.d, lanes.tmin, *far);
             let bits = W::bits(hit);
             if bits != 0 {
@@ -339,7 +429,7 @@ impl PacketBvh {
     fn any_hit<W: RayLanes>(&self, rays: &RayPacket) -> u32 {
         let lanes = Lanes::<W>::new(rays);
         let mut blocked = 0u32;
-        self.walk(&lanes, Lanes::<W>::far(rays), |tri, far| {
+        self.walk(&lanes, Lanes::<W>::far(rays), rays.active.trailing_zeros() as usize, |tri, far| {
             let bits = W::bits(tri_test(tri, lanes.o, lanes.d, lanes.tmin, *far).0);
             if bits == 0 {
                 return Visit::Missed;
@@ -354,19 +444,4 @@ impl PacketBvh {
         });
         blocked
     }
-}
-
-/// Depth of the tree below the root (a lone leaf: 0).
-fn depth(nodes: &[Node]) -> usize {
-    let mut deepest = 0;
-    let mut todo = vec![(0u32, 0usize)];
-    while let Some((i, d)) = todo.pop() {
-        let n = &nodes[i as usize];
-        deepest = deepest.max(d);
-        if n.count == 0 {
-            todo.push((n.first, d + 1));
-            todo.push((n.first + 1, d + 1));
-        }
-    }
-    deepest
 }

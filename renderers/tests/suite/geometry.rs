@@ -212,3 +212,62 @@ fn packets_handle_axis_aligned_grazing_and_far_away_rays() {
         assert!(hits >= 6, "{hits} hits at {offset}");
     }
 }
+
+#[test]
+fn packets_leaving_surfaces_and_through_degenerate_trees_agree_with_brute_force() {
+    // Secondary rays: from the points camera packets hit on the table-1 sphere, onwards
+    // (see-through), mirrored and into the sphere, starting just off the surface — the rays
+    // that enter the boxes around their origin and walk most of the tree.
+    let scene = scenes::table1(TestSurface::lambert(0.8, [1.0; 3]), Vec::<TestLight>::new(), 48);
+    let (cam, accel) = (&scene.camera, scene.accel());
+    let (mut hits, mut ties) = (0, 0);
+    for by in (0..48).step_by(2) {
+        for bx in (0..48).step_by(4) {
+            let mut rays = [RayPacket::default(); 3];
+            for lane in 0..8u32 {
+                let d = cam.ray_dir((bx + lane % 4) as f32 + 0.5, (by + lane / 4) as f32 + 0.5).normalize();
+                let Some(h) = scene.intersect(cam.position(), d, 0.0, f32::INFINITY) else { continue };
+                let p = cam.position() + d * h.t;
+                let n = p.normalize();
+                for (k, dir) in [d, d - 2.0 * d.dot(n) * n, -n].into_iter().enumerate() {
+                    rays[k].set(lane as usize, p, dir, 1e-4, f32::INFINITY);
+                }
+            }
+            for (k, r) in rays.iter().enumerate() {
+                let (h, t) = packet_agrees_with_brute_force(accel, r, &format!("block ({bx}, {by}), ray kind {k}"));
+                hits += h;
+                ties += t;
+            }
+        }
+    }
+    assert!(hits > 500, "{hits} secondary hits");
+    assert!(ties < hits / 50, "{ties} ties of {hits}");
+    // Degenerate trees: 300 copies of one triangle (every box the same), and 300 slivers
+    // along a line.
+    let one = [Vec3A::ZERO, Vec3A::X, Vec3A::Y];
+    let slivers: Vec<[Vec3A; 3]> = (0..300)
+        .map(|i| {
+            let x = i as f32 * 0.01;
+            [Vec3A::new(x, 0.0, 0.0), Vec3A::new(x + 0.01, 0.0, 0.0), Vec3A::new(x, 0.001, 0.0)]
+        })
+        .collect();
+    for (name, tris) in [("copies", vec![one; 300]), ("slivers", slivers)] {
+        let accel = Accel::build(&tris);
+        let mut rng = SplitMix64(5);
+        for k in 0..200 {
+            let mut rays = RayPacket::default();
+            for i in 0..[4, 8, 16][k % 3] {
+                let target = Vec3A::new(rng.uniform(-0.2, 3.2) as f32, rng.uniform(-0.2, 1.2) as f32, 0.0);
+                let o = target + random_unit(&mut rng) * 2.0;
+                rays.set(i, o, target - o, 0.0, f32::INFINITY);
+            }
+            packet_agrees_with_brute_force(&accel, &rays, &format!("{name}, packet {k}"));
+            // And ray by ray (obvhs' single-ray tree, or what stands in for it).
+            let (o, d) = (rays.origins[0], rays.dirs[0]);
+            let (a, b) =
+                (accel.closest_hit(o, d, 0.0, f32::INFINITY), accel.closest_hit_brute_force(o, d, 0.0, f32::INFINITY));
+            assert_eq!(a.map(|h| h.t), b.map(|h| h.t), "{name}, ray {k}");
+            assert_eq!(accel.occluded(o, d, 0.0, f32::INFINITY), b.is_some(), "{name}, ray {k}");
+        }
+    }
+}
