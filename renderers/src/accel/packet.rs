@@ -210,6 +210,103 @@ impl<W: RayLanes> Lanes<W> {
     }
 }
 
+/// How a walk tests the boxes of all children of a node against its rays: child by child
+/// in the packet's own lanes, or — for packets of 4 and 8 rays — several children side by
+/// side in the 16 lanes of one `f32x16` (child `j` of a group in lanes `j·N .. j·N + N`), so
+/// a 4-ray packet tests a node's four boxes with the instructions of one. Every lane
+/// computes what [`Lanes::enter`] computes, operation for operation.
+trait ChildTests: RayLanes {
+    /// Whether [`ChildTests::children`] tests several children at once (else the walk
+    /// tests them one by one with [`Lanes::enter`]).
+    const SIDE_BY_SIDE: bool;
+    /// The rays as the tests want them, made once per walk.
+    type Rays;
+    /// [`ChildTests::Rays`] of `lanes`.
+    fn rays(lanes: &Lanes<Self>) -> Self::Rays;
+    /// For each child slot `j` of `node`: the bits of the rays that enter its box within
+    /// `(tmin, far)` (none for an unused slot) and where ray `rep` enters it.
+    fn children(lanes: &Lanes<Self>, rays: &Self::Rays, node: &Node, far: Self, rep: usize) -> [(u32, f32); ARITY];
+}
+
+/// [`ChildTests::children`] one child at a time.
+#[inline(always)]
+fn child_by_child<W: RayLanes>(lanes: &Lanes<W>, node: &Node, far: W, rep: usize) -> [(u32, f32); ARITY] {
+    core::array::from_fn(|j| {
+        if node.count[j] == EMPTY {
+            return (0, 0.0);
+        }
+        let (m, near) = lanes.enter(node, j, far);
+        (m, near.lane(rep))
+    })
+}
+
+macro_rules! child_by_child {
+    ($($W:ty),+) => {$(
+        impl ChildTests for $W {
+            const SIDE_BY_SIDE: bool = false;
+            type Rays = ();
+            #[inline(always)]
+            fn rays(_: &Lanes<Self>) {}
+            #[inline(always)]
+            fn children(lanes: &Lanes<Self>, _: &(), node: &Node, far: Self, rep: usize) -> [(u32, f32); ARITY] {
+                child_by_child(lanes, node, far, rep)
+            }
+        }
+    )+};
+}
+child_by_child!(f32, f32x16);
+
+/// The rays of a 4- or 8-ray packet repeated across 16 lanes.
+struct Spread {
+    o: [f32x16; 3],
+    inv: [f32x16; 3],
+    tmin: f32x16,
+}
+
+macro_rules! side_by_side {
+    ($($W:ty: $n:literal),+) => {$(
+        impl ChildTests for $W {
+            const SIDE_BY_SIDE: bool = true;
+            type Rays = Spread;
+            #[inline(always)]
+            fn rays(lanes: &Lanes<Self>) -> Spread {
+                let repeat = |v: $W| {
+                    let a = v.to_array();
+                    f32x16::new(core::array::from_fn(|i| a[i % $n]))
+                };
+                Spread { o: lanes.o.map(repeat), inv: lanes.inv.map(repeat), tmin: repeat(lanes.tmin) }
+            }
+            #[inline(always)]
+            fn children(_: &Lanes<Self>, r: &Spread, node: &Node, far: Self, rep: usize) -> [(u32, f32); ARITY] {
+                const PER: usize = 16 / $n;
+                let fa = far.to_array();
+                let tfar = f32x16::new(core::array::from_fn(|i| fa[i % $n]));
+                let mut out = [(0u32, 0.0f32); ARITY];
+                for g in 0..ARITY / PER {
+                    let spread = |b: &[f32; ARITY]| f32x16::new(core::array::from_fn(|i| b[g * PER + i / $n]));
+                    let slab = |k: usize| {
+                        let a = (spread(&node.min[k]) - r.o[k]) * r.inv[k];
+                        let b = (spread(&node.max[k]) - r.o[k]) * r.inv[k];
+                        (a.fast_min(b), a.fast_max(b))
+                    };
+                    let ((nx, fx), (ny, fy), (nz, fz)) = (slab(0), slab(1), slab(2));
+                    let near = nx.fast_max(ny).fast_max(nz.fast_max(r.tmin));
+                    let far = fx.fast_min(fy).fast_min(fz.fast_min(tfar)) * f32x16::splat(FAR_SCALE);
+                    let bits = near.simd_le(far).to_bitmask();
+                    let near = near.to_array();
+                    for c in 0..PER {
+                        let j = g * PER + c;
+                        let m = if node.count[j] == EMPTY { 0 } else { (bits >> (c * $n)) & ((1 << $n) - 1) };
+                        out[j] = (m, near[c * $n + rep]);
+                    }
+                }
+                out
+            }
+        }
+    )+};
+}
+side_by_side!(f32x4: 4, f32x8: 8);
+
 impl PacketBvh {
     /// The packet form of `bvh` over `tris` (scene order; `bvh.primitive_indices` maps leaf
     /// slots to them): each node takes the children of a binary node, and where fewer than
@@ -318,7 +415,7 @@ impl PacketBvh {
     /// the stack nearest on top, by where ray `rep` enters them; a waiting child is tested
     /// again when popped if the intervals have shortened since.
     #[inline(always)]
-    fn walk<W: RayLanes>(
+    fn walk<W: ChildTests>(
         &self,
         lanes: &Lanes<W>,
         mut far: W,
@@ -334,6 +431,7 @@ impl PacketBvh {
             on_heap.resize(self.stack_need, (0, 0));
             &mut on_heap
         };
+        let prepared = W::rays(lanes);
         let mut sp = 0;
         let mut epoch = 0u32;
         let mut node = 0u32;
@@ -342,13 +440,20 @@ impl PacketBvh {
             // The entered children, nearest last.
             let mut found = [(0.0f32, 0u32); ARITY];
             let mut k = 0;
-            for j in 0..ARITY {
-                if n.count[j] == EMPTY {
-                    break;
+            let mut tested = [(0u32, 0.0f32); ARITY];
+            if W::SIDE_BY_SIDE {
+                tested = W::children(lanes, &prepared, n, far, rep);
+            } else {
+                for (j, t) in tested.iter_mut().enumerate() {
+                    if n.count[j] == EMPTY {
+                        break;
+                    }
+                    let (m, near) = lanes.enter(n, j, far);
+                    *t = (m, near.lane(rep));
                 }
-                let (m, near) = lanes.enter(n, j, far);
+            }
+            for (j, (m, key)) in tested.into_iter().enumerate() {
                 if m != 0 {
-                    let key = near.lane(rep);
                     let mut at = k;
                     while at > 0 && found[at - 1].0 < key {
                         found[at] = found[at - 1];
@@ -391,7 +496,7 @@ impl PacketBvh {
     }
 
     #[inline(always)]
-    fn closest<W: RayLanes>(&self, rays: &RayPacket, out: &mut [Hit; MAX_PACKET]) -> u32 {
+    fn closest<W: ChildTests>(&self, rays: &RayPacket, out: &mut [Hit; MAX_PACKET]) -> u32 {
         let lanes = Lanes::<W>::new(rays);
         let (mut b1_best, mut b2_best) = (W::splat(0.0), W::splat(0.0));
         let mut t_best = W::splat(0.0);
@@ -426,7 +531,7 @@ impl PacketBvh {
     }
 
     #[inline(always)]
-    fn any_hit<W: RayLanes>(&self, rays: &RayPacket) -> u32 {
+    fn any_hit<W: ChildTests>(&self, rays: &RayPacket) -> u32 {
         let lanes = Lanes::<W>::new(rays);
         let mut blocked = 0u32;
         self.walk(&lanes, Lanes::<W>::far(rays), rays.active.trailing_zeros() as usize, |tri, far| {
