@@ -216,9 +216,6 @@ impl<W: RayLanes> Lanes<W> {
 /// a 4-ray packet tests a node's four boxes with the instructions of one. Every lane
 /// computes what [`Lanes::enter`] computes, operation for operation.
 trait ChildTests: RayLanes {
-    /// Whether [`ChildTests::children`] tests several children at once (else the walk
-    /// tests them one by one with [`Lanes::enter`]).
-    const SIDE_BY_SIDE: bool;
     /// The rays as the tests want them, made once per walk.
     type Rays;
     /// [`ChildTests::Rays`] of `lanes`.
@@ -231,19 +228,20 @@ trait ChildTests: RayLanes {
 /// [`ChildTests::children`] one child at a time.
 #[inline(always)]
 fn child_by_child<W: RayLanes>(lanes: &Lanes<W>, node: &Node, far: W, rep: usize) -> [(u32, f32); ARITY] {
-    core::array::from_fn(|j| {
+    let mut tested = [(0u32, 0.0f32); ARITY];
+    for (j, t) in tested.iter_mut().enumerate() {
         if node.count[j] == EMPTY {
-            return (0, 0.0);
+            break;
         }
         let (m, near) = lanes.enter(node, j, far);
-        (m, near.lane(rep))
-    })
+        *t = (m, near.lane(rep));
+    }
+    tested
 }
 
 macro_rules! child_by_child {
     ($($W:ty),+) => {$(
         impl ChildTests for $W {
-            const SIDE_BY_SIDE: bool = false;
             type Rays = ();
             #[inline(always)]
             fn rays(_: &Lanes<Self>) {}
@@ -266,7 +264,6 @@ struct Spread {
 macro_rules! side_by_side {
     ($($W:ty: $n:literal),+) => {$(
         impl ChildTests for $W {
-            const SIDE_BY_SIDE: bool = true;
             type Rays = Spread;
             #[inline(always)]
             fn rays(lanes: &Lanes<Self>) -> Spread {
@@ -440,19 +437,7 @@ impl PacketBvh {
             // The entered children, nearest last.
             let mut found = [(0.0f32, 0u32); ARITY];
             let mut k = 0;
-            let mut tested = [(0u32, 0.0f32); ARITY];
-            if W::SIDE_BY_SIDE {
-                tested = W::children(lanes, &prepared, n, far, rep);
-            } else {
-                for (j, t) in tested.iter_mut().enumerate() {
-                    if n.count[j] == EMPTY {
-                        break;
-                    }
-                    let (m, near) = lanes.enter(n, j, far);
-                    *t = (m, near.lane(rep));
-                }
-            }
-            for (j, (m, key)) in tested.into_iter().enumerate() {
+            for (j, (m, key)) in W::children(lanes, &prepared, n, far, rep).into_iter().enumerate() {
                 if m != 0 {
                     let mut at = k;
                     while at > 0 && found[at - 1].0 < key {
