@@ -665,6 +665,25 @@ fn shadow_visibility<F: ShadingFloat, S, L>(
     F::load(&vis)
 }
 
+/// [`run_illuminance`] not inlined (see [`SceneContext`]'s `illuminance`).
+#[inline(never)]
+fn run_illuminance_out_of_line<F, L, V, B>(
+    lights: &[L],
+    e: &mut Exec<F>,
+    category: &str,
+    p: Vec3<F>,
+    cone: Option<(Vec3<F>, F)>,
+    visibility: V,
+    body: B,
+) where
+    F: ShadingFloat,
+    L: anysl_core::LightSource,
+    V: FnMut(F::Mask, Vec3<F>, &LightOutput<F>) -> Option<Color<F>>,
+    B: FnMut(&mut Exec<F>, Vec3<F>, Color<F>),
+{
+    run_illuminance(lights, e, category, p, cone, visibility, body);
+}
+
 impl<F: ShadingFloat, S: SurfaceShader, L: LightShader> ShadingContext<F> for SceneContext<'_, F, S, L> {
     #[inline(always)]
     fn globals(&self) -> &Globals<F> {
@@ -687,6 +706,13 @@ impl<F: ShadingFloat, S: SurfaceShader, L: LightShader> ShadingContext<F> for Sc
         // Data carries no category to select on.
         match tracer.data_for::<F>().filter(|_| category.is_empty()) {
             Some(data) => run_illuminance(data, e, category, p, cone, visibility, body),
+            // Where the lights can run as data, the light-shader loop is the rare path
+            // (lights without a description, a category): out of line, so that its copy of
+            // the body and the light shaders' code (a spotlight's cosines) do not crowd the
+            // shading pass's registers and frame. Elsewhere it is the path, inlined.
+            None if LightData::exact_for::<F>() => {
+                run_illuminance_out_of_line(&tracer.scene.lights, e, category, p, cone, visibility, body);
+            }
             None => run_illuminance(&tracer.scene.lights, e, category, p, cone, visibility, body),
         }
     }
