@@ -185,24 +185,21 @@ impl Accel {
     /// degenerate tree): one ray through the packet BVH, else every triangle.
     #[cold]
     fn closest_hit_without_cwbvh(&self, origin: Vec3A, dir: Vec3A, tmin: f32, tmax: f32) -> Option<Hit> {
-        if !self.packet.usable() {
-            return self.closest_hit_brute_force(origin, dir, tmin, tmax);
+        if self.packet.usable() {
+            self.packet.closest_one(origin, dir, tmin, tmax)
+        } else {
+            self.closest_hit_brute_force(origin, dir, tmin, tmax)
         }
-        let mut ray = RayPacket::default();
-        ray.set(0, origin, dir, tmin, tmax);
-        let mut out = [Hit { t: 0.0, prim: 0, b1: 0.0, b2: 0.0 }; MAX_PACKET];
-        (self.packet.closest_single(&ray, &mut out) != 0).then_some(out[0])
     }
 
     /// [`Accel::occluded`] without a compressed wide BVH, as [`Accel::closest_hit_without_cwbvh`].
     #[cold]
     fn occluded_without_cwbvh(&self, origin: Vec3A, dir: Vec3A, tmin: f32, tmax: f32) -> bool {
-        if !self.packet.usable() {
-            return self.occluded_brute_force(origin, dir, tmin, tmax);
+        if self.packet.usable() {
+            self.packet.occluded_one(origin, dir, tmin, tmax)
+        } else {
+            self.occluded_brute_force(origin, dir, tmin, tmax)
         }
-        let mut ray = RayPacket::default();
-        ray.set(0, origin, dir, tmin, tmax);
-        self.packet.occluded_single(&ray) != 0
     }
 
     /// The closest hit of every active ray of `rays`, traced together (see [`packet`]):
@@ -277,12 +274,9 @@ mod tests {
         let depth = copies.bvh.as_ref().map(cwbvh_depth);
         assert!(depth.is_none(), "300 copies of a triangle: a compressed BVH of depth {depth:?}");
         assert!(copies.packet.usable());
+        let mesh = crate::Mesh::uv_sphere(1.0, 16, 8);
         let sphere = Accel::build(
-            &crate::Mesh::uv_sphere(1.0, 16, 8)
-                .triangles
-                .iter()
-                .map(|t| t.map(|i| Vec3A::from(crate::Mesh::uv_sphere(1.0, 16, 8).positions[i as usize])))
-                .collect::<Vec<_>>(),
+            &mesh.triangles.iter().map(|t| t.map(|i| Vec3A::from(mesh.positions[i as usize]))).collect::<Vec<_>>(),
         );
         assert!(sphere.bvh.as_ref().is_some_and(|b| cwbvh_depth(b) < 8));
     }

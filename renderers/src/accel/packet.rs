@@ -310,8 +310,7 @@ impl PacketBvh {
     /// [`ARITY`], opens the inner child with the largest surface (the one most rays enter)
     /// in its place, until it has [`ARITY`] children or only leaves.
     pub(super) fn new(bvh: &Bvh2, tris: &[PackedTri]) -> Self {
-        let Some(root) = bvh.nodes.first() else { return Self::default() };
-        if tris.is_empty() {
+        if bvh.nodes.is_empty() || tris.is_empty() {
             return Self::default();
         }
         let area = |i: u32| {
@@ -322,22 +321,16 @@ impl PacketBvh {
         // (binary node, packet node it becomes, depth of that node)
         let mut todo = vec![(0u32, 0usize, 0usize)];
         let mut deepest = 0;
-        if root.prim_count > 0 {
-            // A lone leaf: a root with one child.
-            let n = &mut nodes[0];
-            for k in 0..3 {
-                n.min[k][0] = root.aabb.min[k];
-                n.max[k][0] = root.aabb.max[k];
-            }
-            (n.first[0], n.count[0]) = (root.first_index, root.prim_count);
-            todo.clear();
-        }
         while let Some((binary, at, depth)) = todo.pop() {
             deepest = deepest.max(depth);
             let b = &bvh.nodes[binary as usize];
-            let mut kids = [0; ARITY];
-            (kids[0], kids[1]) = (b.first_index, b.first_index + 1);
-            let mut len = 2;
+            // A lone leaf at the root becomes a root with one child.
+            let mut kids = [binary; ARITY];
+            let mut len = 1;
+            if b.prim_count == 0 {
+                (kids[0], kids[1]) = (b.first_index, b.first_index + 1);
+                len = 2;
+            }
             while len < ARITY {
                 let open = (0..len)
                     .filter(|&k| bvh.nodes[kids[k] as usize].prim_count == 0)
@@ -386,14 +379,20 @@ impl PacketBvh {
         }
     }
 
-    /// [`PacketBvh::closest_hits`] of a packet whose only ray is ray 0, in plain `f32`.
-    pub(super) fn closest_single(&self, rays: &RayPacket, out: &mut [Hit; MAX_PACKET]) -> u32 {
-        self.closest::<f32>(rays, out)
+    /// The closest hit of one ray, walked in plain `f32` (for trees obvhs' single-ray
+    /// traversal cannot take).
+    pub(super) fn closest_one(&self, origin: Vec3A, dir: Vec3A, tmin: f32, tmax: f32) -> Option<Hit> {
+        let mut ray = RayPacket::default();
+        ray.set(0, origin, dir, tmin, tmax);
+        let mut out = [Hit { t: 0.0, prim: 0, b1: 0.0, b2: 0.0 }; MAX_PACKET];
+        (self.closest::<f32>(&ray, &mut out) != 0).then_some(out[0])
     }
 
-    /// [`PacketBvh::occluded`] of a packet whose only ray is ray 0, in plain `f32`.
-    pub(super) fn occluded_single(&self, rays: &RayPacket) -> u32 {
-        self.any_hit::<f32>(rays)
+    /// Whether some triangle blocks one ray, walked in plain `f32` (as [`PacketBvh::closest_one`]).
+    pub(super) fn occluded_one(&self, origin: Vec3A, dir: Vec3A, tmin: f32, tmax: f32) -> bool {
+        let mut ray = RayPacket::default();
+        ray.set(0, origin, dir, tmin, tmax);
+        self.any_hit::<f32>(&ray) != 0
     }
 
     /// The active rays that some triangle blocks (any hit), as bits.
