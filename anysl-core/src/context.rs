@@ -368,6 +368,17 @@ pub trait LightSource {
     fn source_category(&self) -> &str;
     /// [`LightShader::light`].
     fn evaluate<F: ShadingFloat>(&self, e: &mut Exec<F>, ps: Vec3<F>) -> LightOutput<F>;
+    /// [`LightShader::data`]: the light as data, when data can describe it.
+    fn source_data(&self) -> Option<LightData>;
+    /// `lights` as data without a copy, when they already are data.
+    #[inline(always)]
+    fn as_data(lights: &[Self]) -> Option<&[LightData]>
+    where
+        Self: Sized,
+    {
+        let _ = lights;
+        None
+    }
 }
 
 impl<T: LightShader> LightSource for T {
@@ -382,6 +393,10 @@ impl<T: LightShader> LightSource for T {
     #[inline(always)]
     fn evaluate<F: ShadingFloat>(&self, e: &mut Exec<F>, ps: Vec3<F>) -> LightOutput<F> {
         self.light(e, ps)
+    }
+    #[inline(always)]
+    fn source_data(&self) -> Option<LightData> {
+        self.data()
     }
 }
 
@@ -402,6 +417,14 @@ impl LightSource for LightData {
     fn evaluate<F: ShadingFloat>(&self, _e: &mut Exec<F>, ps: Vec3<F>) -> LightOutput<F> {
         self.light(ps)
     }
+    #[inline(always)]
+    fn source_data(&self) -> Option<LightData> {
+        Some(*self)
+    }
+    #[inline(always)]
+    fn as_data(lights: &[Self]) -> Option<&[LightData]> {
+        Some(lights)
+    }
 }
 
 impl LightData {
@@ -419,8 +442,8 @@ impl LightData {
     /// category: a loop that selects on one (`illuminance("category", …)`) runs over the light
     /// shaders.
     #[must_use]
-    pub fn of_all<L: LightShader>(lights: &[L]) -> Option<Vec<LightData>> {
-        lights.iter().map(LightShader::data).collect()
+    pub fn of_all<L: LightSource>(lights: &[L]) -> Option<Vec<LightData>> {
+        lights.iter().map(LightSource::source_data).collect()
     }
 }
 
@@ -611,6 +634,12 @@ pub fn sum_ambient<F: ShadingFloat, L: LightSource>(lights: &[L], e: &Exec<F>, p
 /// A complete [`ShadingContext`] for points outside a scene: lights without shadows and a
 /// constant environment colour seen by `trace`. Used by tests, kernel benchmarks and
 /// `rslc eval`.
+///
+/// The lights are light shaders or lights already described as [`LightData`]. Code that
+/// shades many packets under the same lights with an `f32`-based float type gives the data
+/// (made once, [`LightData::of_all`]): the light loops then read a few numbers per light
+/// instead of running the shaders, with the same bits ([`LightData::exact_for`]), and compiled
+/// code finds them in place.
 pub struct PointContext<'a, F: ShadingFloat, L> {
     /// The points being shaded.
     pub globals: Globals<F>,
@@ -625,7 +654,7 @@ pub struct PointContext<'a, F: ShadingFloat, L> {
     data: core::cell::OnceCell<Option<LightTable>>,
 }
 
-impl<'a, F: ShadingFloat, L: LightShader> PointContext<'a, F, L> {
+impl<'a, F: ShadingFloat, L: LightSource> PointContext<'a, F, L> {
     /// A context with the default sky (horizon 0.6, zenith (0.2, 0.3, 0.8)).
     #[inline(always)]
     #[must_use]
@@ -642,7 +671,7 @@ impl<'a, F: ShadingFloat, L: LightShader> PointContext<'a, F, L> {
 
 /// `lights` as data, when every one of them (at most [`MAX_DATA_LIGHTS`]) has a description.
 #[cold]
-fn light_table<L: LightShader>(lights: &[L]) -> Option<LightTable> {
+fn light_table<L: LightSource>(lights: &[L]) -> Option<LightTable> {
     if lights.len() > MAX_DATA_LIGHTS {
         return None;
     }
@@ -650,12 +679,12 @@ fn light_table<L: LightShader>(lights: &[L]) -> Option<LightTable> {
     let mut t =
         LightTable { from: (lights.as_ptr() as usize, lights.len()), len: lights.len(), data: [none; MAX_DATA_LIGHTS] };
     for (d, l) in t.data.iter_mut().zip(lights) {
-        *d = l.data()?;
+        *d = l.source_data()?;
     }
     Some(t)
 }
 
-impl<F: ShadingFloat, L: LightShader> ShadingContext<F> for PointContext<'_, F, L> {
+impl<F: ShadingFloat, L: LightSource> ShadingContext<F> for PointContext<'_, F, L> {
     #[inline(always)]
     fn globals(&self) -> &Globals<F> {
         &self.globals
@@ -688,6 +717,9 @@ impl<F: ShadingFloat, L: LightShader> ShadingContext<F> for PointContext<'_, F, 
     /// Lights without shadows: described as data when each of them is.
     #[inline]
     fn lights_as_data(&self) -> Option<&[LightData]> {
+        if let Some(data) = L::as_data(self.lights) {
+            return Some(data);
+        }
         let t = self.data.get_or_init(|| light_table(self.lights)).as_ref()?;
         (t.from == (self.lights.as_ptr() as usize, self.lights.len())).then(|| &t.data[..t.len])
     }

@@ -43,7 +43,7 @@
 //! |---|---|---|
 //! | `+ - * / sqrt floor ceil trunc round min max abs` | 0 | bit-identical |
 //! | `exp`, `exp2`, `ln`, `log2` | 1.2e-7 (1 ulp) | subnormal results included |
-//! | `pow` | 1.2e-7 · max(1, \|y·log2 x\|) (5 ulp at \|y·log2 x\| ≈ 126) | double-f32 log2, rel. error ≈ 2^-28 |
+//! | `pow` | 1.2e-7 · max(1, \|y·log2 x\|) (8.4e-6 at \|y·log2 x\| ≈ 114) | f32 `log2 m`, double-f32 product and `exp2` |
 //! | `sin`, `cos` | 1.2e-7 (1 ulp) | lanes with \|x\| > 2^19 (and ±inf) go through std |
 //! | `tan` | 1.95e-7 (2 ulp) | same fallback |
 //! | `asin` | 1.85e-7 (2 ulp) | |
@@ -53,12 +53,21 @@
 //! `cos`, `tan` (≈5e-7 near multiples of π/2, ≈1e-6 at |x| ≈ 1e3), `asin`, `atan`
 //! (≈2.3e-7) and `powf_simd` are not, and `recip`/`recip_sqrt` are 12-bit estimates on AVX;
 //! so all transcendentals here are our own kernels (`src/math.rs`), written once over all
-//! widths, and `pow` is a double-f32 `exp2(y·log2 x)`. The kernels need FMA (the workspace
-//! builds with `target-cpu=native`).
+//! widths. `pow` is `exp2(y·log2 x)` in f32 lanes: `log2 x = e + log2 m` with `log2 m` from
+//! one degree-8 polynomial, `y·log2 x` and the exponential in double-f32, so its only error
+//! beyond an ulp is the f32 error of `log2 m` times `|y|` — relative to results of at most 1
+//! (every highlight) an absolute error below 5e-8. The kernels need FMA (the workspace builds
+//! with `target-cpu=native`).
+//!
+//! [`Pair<F>`] shades two packets of any of these types together, operation by operation,
+//! so that one packet's dependency chains fill the other's latency.
 #![warn(missing_docs)]
 
 mod math;
+mod pair;
 mod soa;
+
+pub use pair::{Pair, PairBits, PairMask};
 
 pub use soa::{pack, pack_color, pack_vec3, unpack, unpack_color, unpack_vec3, Lanes};
 
@@ -68,9 +77,8 @@ pub use soa::{pack, pack_color, pack_vec3, unpack, unpack_color, unpack_vec3, La
 /// once, so both compute the same bits. The algorithms are those of `src/math.rs`.
 pub mod kernel_consts {
     pub use crate::math::{
-        ASIN_A, ATAN_P, COS_C, EXP2_D, EXP2_Q, FRAC_2_PI, LN2_HI16, LN2_LO16, LN_ATANH_P, LOG2E_HI, LOG2E_LO, LOG_L,
-        MAGIC_1P5_2P52, PIO2_1, PIO2_2, PIO2_3, PIO2_LO, PI_HI, PI_LO, POW_DD_LANES, POW_T_MAX, POW_T_MIN, SIN_S,
-        SQRT_HALF_BITS_F64, TAN_T, TRIG_VECTOR_LIMIT,
+        ASIN_A, ATAN_P, COS_C, EXP2_Q, FRAC_2_PI, LN2_HI16, LN2_LO16, LOG2E_HI, LOG2E_LO, LOG2_Q, LOG_L, PIO2_1,
+        PIO2_2, PIO2_3, PIO2_LO, PI_HI, PI_LO, SIN_S, SQRT_HALF_BITS, TAN_T, TRIG_VECTOR_LIMIT,
     };
     /// The kernels' `fma` is one fused operation (a build with FMA); without FMA, `wide`
     /// computes `a·b + c` with two roundings.
@@ -82,6 +90,50 @@ use core::fmt;
 use core::ops::{
     Add, AddAssign, BitAnd, BitOr, BitXor, Div, DivAssign, Mul, MulAssign, Neg, Not, Shl, Shr, Sub, SubAssign,
 };
+
+/// Broadcasts of a run-time `f32` to every lane, one `vbroadcastss` each: `wide`'s `splat`
+/// transmutes `[v; N]`, which LLVM does not always recognize as a broadcast (at 16 lanes it
+/// assembled the vector from 128-bit pieces, lane by lane, 30 instructions for a light's
+/// numbers). Constants fold either way.
+#[allow(non_snake_case)]
+mod splat {
+    #[cfg(target_arch = "x86_64")]
+    use core::arch::x86_64 as arch;
+
+    /// 4 lanes.
+    #[inline(always)]
+    pub fn f32x4(v: f32) -> wide::f32x4 {
+        #[cfg(all(target_arch = "x86_64", target_feature = "sse"))]
+        // SAFETY: `__m128` and `wide::f32x4` are both four f32 lanes, 16 bytes.
+        return unsafe { core::mem::transmute::<arch::__m128, wide::f32x4>(arch::_mm_set1_ps(v)) };
+        #[allow(unreachable_code)]
+        wide::f32x4::splat(v)
+    }
+
+    /// 8 lanes.
+    #[inline(always)]
+    pub fn f32x8(v: f32) -> wide::f32x8 {
+        #[cfg(all(target_arch = "x86_64", target_feature = "avx"))]
+        // SAFETY: `__m256` and `wide::f32x8` (with AVX) are both eight f32 lanes, 32 bytes.
+        return unsafe { core::mem::transmute::<arch::__m256, wide::f32x8>(arch::_mm256_set1_ps(v)) };
+        #[allow(unreachable_code)]
+        wide::f32x8::splat(v)
+    }
+
+    /// 16 lanes.
+    #[inline(always)]
+    pub fn f32x16(v: f32) -> wide::f32x16 {
+        #[cfg(all(target_arch = "x86_64", target_feature = "avx512f"))]
+        // SAFETY: `__m512` and `wide::f32x16` (with AVX-512F) are both sixteen f32 lanes, 64 bytes.
+        return unsafe { core::mem::transmute::<arch::__m512, wide::f32x16>(arch::_mm512_set1_ps(v)) };
+        #[allow(unreachable_code)]
+        {
+            let half = f32x8(v);
+            // SAFETY: without AVX-512F, `wide::f32x16` is two `f32x8` halves, 64 bytes.
+            unsafe { core::mem::transmute::<[wide::f32x8; 2], wide::f32x16>([half, half]) }
+        }
+    }
+}
 
 /// Defines one SIMD width: the float type, its mask and its integer lanes, with every
 /// trait the instantiation needs. All widths share this text, so an operation cannot be
@@ -111,7 +163,7 @@ macro_rules! simd_width {
             #[inline(always)]
             #[must_use]
             pub fn splat(v: f32) -> Self {
-                Self(wide::$wf::splat(v))
+                Self(splat::$wf(v))
             }
             /// The lanes as an array.
             #[inline(always)]

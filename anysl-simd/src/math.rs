@@ -80,13 +80,11 @@ pub(crate) trait Wide:
     fn all(self) -> bool;
     /// Replaces the lanes selected by `m` with `f(lane)` (slow path, not vectorized).
     fn map_where(self, m: Self, f: fn(f32) -> f32) -> Self;
-    /// `|x|^y` for `ax = |x|` through [`pow_mag_d`] in f64 lanes of the same count.
-    fn pow_mag(ax: Self, y: Self) -> Self;
 }
 
 /// Implements [`Wide`] for a `wide` float type and its integer twin.
 macro_rules! impl_wide {
-    ($f:ident, $i:ident, $from_int:ident, $pow_mag:ident) => {
+    ($f:ident, $i:ident, $from_int:ident) => {
         impl Wide for wide::$f {
             type I = wide::$i;
             #[inline(always)]
@@ -174,17 +172,13 @@ macro_rules! impl_wide {
                 }
                 wide::$f::from(v)
             }
-            #[inline(always)]
-            fn pow_mag(ax: Self, y: Self) -> Self {
-                $pow_mag(ax, y)
-            }
         }
     };
 }
 
-impl_wide!(f32x4, i32x4, from_i32x4, pow_mag_x4);
-impl_wide!(f32x8, i32x8, from_i32x8, pow_mag_x8);
-impl_wide!(f32x16, i32x16, from_i32x16, pow_mag_x16);
+impl_wide!(f32x4, i32x4, from_i32x4);
+impl_wide!(f32x8, i32x8, from_i32x8);
+impl_wide!(f32x16, i32x16, from_i32x16);
 
 // ---------------------------------------------------------------------------------------
 // Small helpers.
@@ -409,195 +403,81 @@ pub(crate) fn ln<W: Wide>(x: W) -> W {
     log_specials(x, hi + lo)
 }
 
-/// The f64 operations of [`pow_mag_d`] (implemented for `wide::f64x4` and `wide::f64x8`).
-trait WideD: Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = Self> + Div<Output = Self> {
-    fn splat(v: f64) -> Self;
-    fn fma(self, m: Self, a: Self) -> Self;
-    fn round_even(self) -> Self;
-    /// `self < r` as a lane mask.
-    fn lt(self, r: Self) -> Self;
-    fn eq(self, r: Self) -> Self;
-    fn select(m: Self, a: Self, b: Self) -> Self;
-    /// `from_bits(bits(self) << shl)`.
-    fn shl_bits(self, shl: u32) -> Self;
-    /// `from_bits(bits(self) - (((bits(self) - sub) >> 52) << 52))` and `(bits(self) - sub) >> 52`
-    /// as f64: the mantissa/exponent split of [`pow_mag_d`].
-    fn split_exponent(self, sub: i64) -> (Self, Self);
-}
+/// `log2(1+f) = f·Q(f)` for f in [√½-1, √2-1]: a degree-8 polynomial interpolating
+/// `log2(1+f)/f` at the Chebyshev nodes (`tools/polyfit.py "log2 Q"`), relative error of the
+/// f32-rounded polynomial below 4.2e-8 (0.35 ulp; the f32 rounding of `Q(0) = 1/ln 2` alone
+/// is 1.3e-8).
+pub const LOG2_Q: [f32; 9] = [
+    1.442695022e+00,
+    -7.213474512e-01,
+    4.809107482e-01,
+    -3.606932759e-01,
+    2.879032493e-01,
+    -2.391698807e-01,
+    2.160782218e-01,
+    -2.058618814e-01,
+    1.231096834e-01,
+];
 
-macro_rules! impl_wide_d {
-    ($d:ident, $i:ident) => {
-        impl WideD for wide::$d {
-            #[inline(always)]
-            fn splat(v: f64) -> Self {
-                wide::$d::splat(v)
-            }
-            #[inline(always)]
-            fn fma(self, m: Self, a: Self) -> Self {
-                self.mul_add(m, a)
-            }
-            #[inline(always)]
-            fn round_even(self) -> Self {
-                self.round_ties_even()
-            }
-            #[inline(always)]
-            fn lt(self, r: Self) -> Self {
-                self.simd_lt(r)
-            }
-            #[inline(always)]
-            fn eq(self, r: Self) -> Self {
-                self.simd_eq(r)
-            }
-            #[inline(always)]
-            fn select(m: Self, a: Self, b: Self) -> Self {
-                m.select(a, b)
-            }
-            #[inline(always)]
-            fn shl_bits(self, shl: u32) -> Self {
-                let u: wide::$i = wide::bytemuck::cast(self);
-                wide::bytemuck::cast(u << shl)
-            }
-            #[inline(always)]
-            fn split_exponent(self, sub: i64) -> (Self, Self) {
-                let u: wide::$i = wide::bytemuck::cast(self);
-                let e = (u - wide::$i::splat(sub)) >> 52;
-                let m: Self = wide::bytemuck::cast(u - (e << 52));
-                // e (|e| < 2^51) as f64: the integer added to the bits of 1.5·2^52.
-                let ef: Self = wide::bytemuck::cast(e + wide::$i::splat(MAGIC_1P5_2P52.to_bits() as i64));
-                (m, ef - Self::splat(MAGIC_1P5_2P52))
-            }
-        }
-    };
-}
-
-impl_wide_d!(f64x4, i64x4);
-impl_wide_d!(f64x8, i64x8);
-
-/// 1.5·2^52: an integer `i` with |i| < 2^51 added to it lands in the low bits of its
-/// mantissa, so `bits(1.5·2^52 + i) = bits(1.5·2^52) + i`.
-pub const MAGIC_1P5_2P52: f64 = 6_755_399_441_055_744.0;
-
-/// Bits of √½ as f64: subtracting them makes the exponent field round the mantissa into
+/// Bits of √½ as f32: subtracting them makes the exponent field round the mantissa into
 /// [√½, √2).
-pub const SQRT_HALF_BITS_F64: i64 = 0x3fe6_a09e_667f_3bcd;
+pub const SQRT_HALF_BITS: u32 = 0x3f35_04f3;
 
-/// `ln m = 2s + s·z·P(z)`, `s = (m-1)/(m+1)`, `z = s²`: the series `ln m = 2·atanh s =
-/// 2(s + s³/3 + s⁵/5 + …)` (Abramowitz & Stegun 4.1.27) with its tail `P(z) = 2/3 + 2z/5 +
-/// …` replaced by a degree-4 polynomial interpolating it at the Chebyshev nodes of
-/// z in [0, 0.02944] (m in [√½, √2), |s| <= 0.1716): relative error of `ln m` below 1.1e-13
-/// (`tools/polyfit_f64.py`; the series cut after s¹³ took one more term for 1.3e-12). pow
-/// multiplies the logarithm's relative error by |y·log2 x| <= 151·ln 2.
-pub const LN_ATANH_P: [f64; 5] = [
-    0.666_666_666_673_754_5,
-    0.399_999_987_968_486_74,
-    0.285_717_546_357_327_6,
-    0.221_913_944_931_750_57,
-    0.193_627_768_367_475_33,
-];
-
-/// `2^r` for |r| <= 0.5 as a degree-8 polynomial interpolating it at the Chebyshev nodes
-/// (`tools/polyfit_f64.py`): relative error below 1.1e-12 (the Taylor series needs degree 9
-/// for 9.4e-12).
-pub const EXP2_D: [f64; 9] = [
-    1.0,
-    0.693_147_180_545_911,
-    0.240_226_506_958_128_33,
-    0.055_504_109_412_957_17,
-    0.009_618_129_159_464_759,
-    0.001_333_345_048_181_932_7,
-    0.000_154_034_557_927_496_44,
-    1.531_010_238_038_351e-5,
-    1.325_524_079_720_696_6e-6,
-];
-
-/// Largest f64 exponent `y·log2|x|` passed to the exponential; beyond it the result
-/// overflows f32 to +inf whatever the value.
-pub const POW_T_MAX: f64 = 130.0;
-/// Below this exponent the result is under half the smallest f32 subnormal: +0.
-pub const POW_T_MIN: f64 = -151.0;
-
+/// `log2 x = e + log2 m` for finite x > 0 as an unevaluated sum `(s, sl)`, `s = e + l` and
+/// `sl` its rounding error, with `l = log2 m` in one f32 (about one ulp of `l`). With
+/// `SUBNORMAL` the lanes below the normal range are scaled by 2^24 first; without, they give
+/// garbage (the caller keeps them off this path).
 #[inline(always)]
-fn horner_d<D: WideD, const N: usize>(x: D, c: [f64; N]) -> D {
-    let mut acc = D::splat(c[N - 1]);
-    let mut i = N - 1;
-    while i > 0 {
-        i -= 1;
-        acc = acc.fma(x, D::splat(c[i]));
-    }
-    acc
+fn log2_split<W: Wide, const SUBNORMAL: bool>(x: W) -> (W, W) {
+    let (xs, bias) = if SUBNORMAL {
+        let tiny = x.lt(k(f32::MIN_POSITIVE));
+        (W::select(tiny, x * k(16_777_216.0), x), W::select(tiny, k(24.0), k(0.0)))
+    } else {
+        (x, k(0.0))
+    };
+    let u = xs.bits();
+    let ei = (u - W::splat_i(SQRT_HALF_BITS as i32)) >> 23;
+    let m = W::from_bits(u - (ei << 23));
+    let e = if SUBNORMAL { W::from_int(ei) - bias } else { W::from_int(ei) };
+    let f = m - k(1.0); // exact (Sterbenz)
+    let l = f * horner(f, LOG2_Q);
+    // Fast2Sum: |e| >= 1 > |l| unless e = 0 (then s = l exactly and sl = 0).
+    let s = e + l;
+    (s, (e - s) + l)
 }
 
-/// `ax^y` for `ax >= 0` (or NaN) in f64 lanes holding f32 values: `2^(y·log2 ax)` with both
-/// steps in f64, whose relative error (below 2e-10 of the result) is far below an f32 ulp,
-/// so the result is the correctly rounded f32 in nearly every case and within 0.501 ulp in
-/// all (tested). `+0 → 0` for y > 0 and `+inf` for y < 0, `+inf` as C99; NaN
-/// propagates; the caller handles the sign, y = 0 and x = 1.
+/// `ax^y` for `ax >= 0` (or NaN) in f32 lanes: `2^(y·log2 ax)` with `log2 ax` as
+/// [`log2_split`] and `y·log2 ax` as a double-f32 (the product's rounding error by FMA), so
+/// the only error the exponent carries is that of `l = log2 m`: relative to the result about
+/// `ln 2·|y·l|·2^-23` plus an ulp of the exponential. `+0 → 0` for y > 0 and `+inf` for y < 0,
+/// `+inf` as C99; NaN propagates; the caller handles the sign, y = 0 and x = 1.
+///
+/// `GENERAL = false` is [`pow`]'s fast path: every lane a positive normal base or `+0`, with
+/// a finite exponent; the two forms compute the same bits for those lanes.
 #[inline(always)]
-fn pow_mag_d<D: WideD>(ax: D, y: D) -> D {
-    let c = D::splat;
-    // log2 ax = e + log2 m, m in [√½, √2) (f32 subnormals are normal in f64).
-    let (m, e) = ax.split_exponent(SQRT_HALF_BITS_F64);
-    let f = m - c(1.0);
-    let s = f / (f + c(2.0));
-    let z = s * s;
-    let ln_m = (s * z).fma(horner_d(z, LN_ATANH_P), s + s);
-    let l = ln_m.fma(c(core::f64::consts::LOG2_E), e);
-    // log2 0 = -inf; log2 inf = inf and NaN stays NaN (the split above gives finite garbage).
-    let l = D::select(ax.eq(c(0.0)), c(f64::NEG_INFINITY), D::select(ax.lt(c(f64::INFINITY)), l, ax));
-    let t = y * l;
-    let t = D::select(c(POW_T_MAX).lt(t), c(POW_T_MAX), t);
-    // Lanes far below the subnormals give +0 directly: narrowing a tiny f64 to f32 would
-    // underflow, which can take a microcode assist, and `pow(+0, y)` is every highlight
-    // facing away from a light.
-    let tiny = t.lt(c(POW_T_MIN));
-    let n = t.round_even();
-    let p = horner_d(t - n, EXP2_D);
-    // 2^n from the bits of n + 1.5·2^52 + 1023 (n in [-151, 130]).
-    let scale = (n + c(MAGIC_1P5_2P52 + 1023.0)).shl_bits(52);
-    D::select(tiny, c(0.0), p * scale)
-}
-
-#[inline(always)]
-fn pow_mag_x4(ax: wide::f32x4, y: wide::f32x4) -> wide::f32x4 {
-    let w = |v: wide::f32x4| wide::f64x4::from(v.to_array().map(f64::from));
-    let r = pow_mag_d(w(ax), w(y)).to_array();
-    wide::f32x4::from(r.map(|v| v as f32))
-}
-
-#[inline(always)]
-fn pow_mag_x8(ax: wide::f32x8, y: wide::f32x8) -> wide::f32x8 {
-    let w = |v: wide::f32x8| wide::f64x8::from(v.to_array().map(f64::from));
-    let r = pow_mag_d(w(ax), w(y)).to_array();
-    wide::f32x8::from(r.map(|v| v as f32))
-}
-
-/// `ax^y` for `ax >= 0` (or NaN) in double-f32 arithmetic: `log2` and `exp2` each as an
-/// unevaluated sum of two f32.
-#[inline(always)]
-fn pow_mag_dd<W: Wide>(ax: W, y: W) -> W {
-    let (lh, ll) = log2_dd(ax);
-    // log2 of 0 and inf (NaN stays NaN through the arithmetic below).
-    let finite = ax.lt(k(f32::INFINITY));
+fn pow_mag<W: Wide, const GENERAL: bool>(ax: W, y: W) -> W {
+    let (lh, ll) = log2_split::<W, GENERAL>(ax);
     let zero = ax.eq(k(0.0));
-    let lh = W::select(zero, k(f32::NEG_INFINITY), W::select(finite, lh, ax));
-    let ll = W::select(finite & !zero, ll, k(0.0));
+    let (lh, ll) = if GENERAL {
+        // log2 of 0 and inf (NaN stays NaN through the arithmetic below).
+        let finite = ax.lt(k(f32::INFINITY));
+        (W::select(zero, k(f32::NEG_INFINITY), W::select(finite, lh, ax)), W::select(finite & !zero, ll, k(0.0)))
+    } else {
+        (lh, ll)
+    };
     let th = y * lh;
     let tl = y.fma(ll, y.fma(lh, -th));
-    exp2_dd(th, tl)
+    let r = exp2_dd(th, tl);
+    if GENERAL {
+        r
+    } else {
+        // +0 went through the arithmetic as 2^-127·1 (finite), and 0^y = +0 for y > 0.
+        W::select(zero, k(0.0), r)
+    }
 }
 
-/// The width whose `pow` stays in double-f32 ([`pow_mag_dd`]): 16 f32 lanes would take two
-/// 8-lane f64 vectors, and measured in the Table-1 renderer the f64 form was slower there
-/// (6.31× against 6.46× shading speedup over `f32`), where at 4 and 8 lanes it is faster.
-pub const POW_DD_LANES: u32 = 16;
-
-#[inline(always)]
-fn pow_mag_x16(ax: wide::f32x16, y: wide::f32x16) -> wide::f32x16 {
-    pow_mag_dd(ax, y)
-}
-
-/// x^y (C99 `pow`, as `f32::powf`) = 2^(y·log2|x|) computed in f64 lanes ([`pow_mag_d`]),
-/// with the sign from the parity of integer y for negative x.
+/// x^y (C99 `pow`, as `f32::powf`) = 2^(y·log2|x|) ([`pow_mag`]), with the sign from the
+/// parity of integer y for negative x.
 #[inline(always)]
 pub(crate) fn pow<W: Wide>(x: W, y: W) -> W {
     // Where every lane has a positive finite base (or +0 under a positive exponent) and a
@@ -606,9 +486,9 @@ pub(crate) fn pow<W: Wide>(x: W, y: W) -> W {
     // special-value fix-ups cost a third of the call otherwise.
     let zero: W = k(0.0);
     let sign = W::from_bits(x.bits() >> 31);
-    let base_ok = !sign & x.lt(k(f32::INFINITY)) & (zero.lt(x) | zero.lt(y));
+    let base_ok = !sign & x.lt(k(f32::INFINITY)) & (k::<W>(f32::MIN_POSITIVE).le(x) | (x.eq(zero) & zero.lt(y)));
     if (base_ok & abs(y).lt(k(f32::INFINITY))).all() {
-        return W::pow_mag(x, y);
+        return pow_mag::<W, false>(x, y);
     }
     pow_general(x, y, sign)
 }
@@ -621,7 +501,7 @@ pub(crate) fn pow<W: Wide>(x: W, y: W) -> W {
 #[inline(never)]
 fn pow_general<W: Wide>(x: W, y: W, sign: W) -> W {
     let ax = abs(x);
-    let a = W::pow_mag(ax, y);
+    let a = pow_mag::<W, true>(ax, y);
     let finite = ax.lt(k(f32::INFINITY));
     let y_int = y.floor().eq(y); // true for ±inf, false for NaN
     let half = y * k(0.5);

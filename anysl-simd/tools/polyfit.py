@@ -115,3 +115,10 @@ HALF_PI = Decimal("3.14159265358979323846264338327950288419716939937510582097494
 h = f32(HALF_PI)
 m = f32(HALF_PI - Decimal(h))
 print("pi/2 three-part (Cody-Waite)", h, m, f32(HALF_PI - Decimal(h) - Decimal(m)))
+
+# log2(1+f) = f * Q(f), f in [sqrt(1/2)-1, sqrt(2)-1] (pow's logarithm): relative error of Q
+def Q2(f):
+    if abs(f) < 1e-3:
+        return math.fsum((-1) ** k * f**k / (k + 1) for k in range(30)) / LN2
+    return math.log1p(f) / f / LN2
+report("log2 Q", Q2, math.sqrt(0.5) - 1, math.sqrt(2) - 1, 8, lambda f: 1 / Q2(f))

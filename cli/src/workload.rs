@@ -21,13 +21,12 @@
 //! implements [`System`] and is appended in [`systems`].
 
 use anysl_ad::Dual;
-use anysl_core::{Mask, Shader, ShadingFloat};
+use anysl_core::{LightData, Mask, Shader, ShadingFloat};
 use anysl_rsl::back::interp::{InterpShader, Program};
 use anysl_rsl::ir::Module;
 use anysl_rsl::passes::{optimize, PassOptions};
 use anysl_rsl::{compile_source, CompileOptions};
 use anysl_shaders::workload::{self, reference, WorkloadScene, WorkloadShader};
-use anysl_shaders::Light;
 use anysl_simd::{F32x16, F32x4, F32x8};
 use indicatif::ProgressBar;
 use rayon::prelude::*;
@@ -74,8 +73,9 @@ pub struct WorkloadOpts {
 pub struct CallEnv<'a> {
     /// The inputs.
     pub scene: &'a WorkloadScene,
-    /// The §3 lights.
-    pub lights: &'a [Light],
+    /// The §3 lights as data (made once per run; every system measured shades with an
+    /// `f32`-based float type, for which the data is the light shaders to the bit).
+    pub lights: &'a [LightData],
     /// The worker pool (`None`: one thread, the calling one).
     pub pool: Option<&'a ThreadPool>,
 }
@@ -129,7 +129,7 @@ impl<F: ShadingFloat> System for Generic<F> {
     }
     fn shade(&mut self, env: &CallEnv<'_>, shader: &WorkloadShader, out: &mut [Vec<f32>; 3]) -> Result<(), String> {
         let (scene, lights) = (env.scene, env.lights);
-        env.for_chunks(out, |start, out| scene.shade::<F>(shader, lights, start, out));
+        env.for_chunks(out, |start, out| scene.shade::<F, LightData>(shader, lights, start, out));
         Ok(())
     }
 }
@@ -192,7 +192,7 @@ impl System for Interp {
         let (scene, lights) = (env.scene, env.lights);
         let masks = [<InterpFloat as ShadingFloat>::Mask::splat(true); INTERP_CHUNKS];
         env.for_chunks(out, |start, out| {
-            scene.shade_batched::<InterpFloat>(lights, start, out, INTERP_CHUNKS, |ctxs, outs| {
+            scene.shade_batched::<InterpFloat, _>(lights, start, out, INTERP_CHUNKS, |ctxs, outs| {
                 interp.shade_batch(ctxs, &masks, outs)
             });
         });
@@ -238,9 +238,13 @@ impl System for Jit {
         };
         let (scene, lights) = (env.scene, env.lights);
         match self.variant {
-            Variant::F32 => env.for_chunks(out, |start, out| scene.shade_surface::<f32, _>(jit, lights, start, out)),
-            Variant::X8 => env.for_chunks(out, |start, out| scene.shade_surface::<F32x8, _>(jit, lights, start, out)),
-            Variant::X16 => env.for_chunks(out, |start, out| scene.shade_surface::<F32x16, _>(jit, lights, start, out)),
+            Variant::F32 => env.for_chunks(out, |start, out| scene.shade_surface::<f32, _, _>(jit, lights, start, out)),
+            Variant::X8 => {
+                env.for_chunks(out, |start, out| scene.shade_surface::<F32x8, _, _>(jit, lights, start, out))
+            }
+            Variant::X16 => {
+                env.for_chunks(out, |start, out| scene.shade_surface::<F32x16, _, _>(jit, lights, start, out))
+            }
             v => return Err(format!("{}: variant {v:?} is not measured", self.name)),
         }
         Ok(())
@@ -298,7 +302,7 @@ pub fn run(opts: &WorkloadOpts, progress: &ProgressBar) -> Result<Vec<WorkloadRo
 
     progress.set_message("scene setup");
     let scene = WorkloadScene::new();
-    let lights = workload::lights();
+    let lights = workload::light_data();
     let references: Vec<Vec<f32>> =
         shaders.iter().map(|s| reference::load_reference(s.name())).collect::<Result<_, _>>()?;
     let n = scene.padded_len();

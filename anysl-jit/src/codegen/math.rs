@@ -275,18 +275,6 @@ impl<'c> Cg<'c, '_> {
         (e, s_hi, lo)
     }
 
-    /// `log2 x` as a double-f32 (the library's `log2_dd`).
-    fn k_log2_dd(&self, x: V<'c>) -> (V<'c>, V<'c>) {
-        let (e, ln_hi, ln_lo) = self.k_log_reduce(x);
-        let l_hi = self.kmul(ln_hi, self.kf(kc::LOG2E_HI));
-        let inner = self.kfma(ln_hi, self.kf(kc::LOG2E_HI), self.kneg(l_hi));
-        let l_lo = self.kfma(ln_lo, self.kf(kc::LOG2E_HI), self.kfma(ln_hi, self.kf(kc::LOG2E_LO), inner));
-        let hi = self.kadd(e, l_hi);
-        let lo = self.kadd(self.kadd(self.ksub(e, hi), l_hi), l_lo);
-        let s = self.kadd(hi, lo);
-        (s, self.ksub(lo, self.ksub(s, hi)))
-    }
-
     /// The logarithm `v` of `x`, with the C99 values for `x ≤ 0` and `+inf`.
     fn k_log_specials(&self, x: V<'c>, v: V<'c>) -> V<'c> {
         use FloatPredicate::{OEQ, OLT};
@@ -309,86 +297,37 @@ impl<'c> Cg<'c, '_> {
         self.k_log_specials(x, self.kadd(hi, lo))
     }
 
-    // ------------------------------------------------------------ f64 lanes (pow at 4 and 8 lanes)
-
-    fn dvt(&self) -> VectorType<'c> {
-        self.cx.f64_type().vec_type(self.t.lanes)
-    }
-    fn dit(&self) -> VectorType<'c> {
-        self.cx.i64_type().vec_type(self.t.lanes)
-    }
-    /// Every f64 lane `x`.
-    fn df(&self, x: f64) -> V<'c> {
-        let k = self.cx.f64_type().const_float(x);
-        VectorType::const_vector(&vec![k; self.t.lanes as usize])
-    }
-    /// Every i64 lane `x`.
-    fn di(&self, x: i64) -> V<'c> {
-        let k = self.cx.i64_type().const_int(x as u64, true);
-        VectorType::const_vector(&vec![k; self.t.lanes as usize])
-    }
-    fn dhorner(&self, x: V<'c>, c: &[f64]) -> V<'c> {
-        self.horner_of(x, c.iter().map(|&v| self.df(v)).collect())
-    }
-    fn dbits(&self, a: V<'c>) -> V<'c> {
-        self.b.build_bit_cast(a, self.dit(), "").expect("bitcast").into_vector_value()
-    }
-    fn dfrom_bits(&self, a: V<'c>) -> V<'c> {
-        self.b.build_bit_cast(a, self.dvt(), "").expect("bitcast").into_vector_value()
-    }
-
-    /// `ax^y` for `ax >= 0` in f64 lanes (the library's `pow_mag_d`).
-    fn k_pow_mag_d(&self, ax: V<'c>, y: V<'c>) -> V<'c> {
+    /// `ax^y` for `ax >= 0` (the library's `pow_mag` in its general form, which computes the
+    /// bits of its fast path for every lane that path takes).
+    fn k_pow_mag(&self, ax: V<'c>, y: V<'c>) -> V<'c> {
         use FloatPredicate::{OEQ, OLT};
-        let widen = |v: V<'c>| self.b.build_float_ext(v, self.dvt(), "").expect("fpext");
-        let (ax, y) = (widen(ax), widen(y));
-        // split_exponent
-        let u = self.dbits(ax);
-        let e = self.kint('>', self.kint('-', u, self.di(kc::SQRT_HALF_BITS_F64)), self.di(52));
-        let m = self.dfrom_bits(self.kint('-', u, self.kint('<', e, self.di(52))));
-        let magic = kc::MAGIC_1P5_2P52;
-        let ef = self.ksub(self.dfrom_bits(self.kint('+', e, self.di(magic.to_bits() as i64))), self.df(magic));
-        let f = self.ksub(m, self.df(1.0));
-        let s = self.kdiv(f, self.kadd(f, self.df(2.0)));
-        let z = self.kmul(s, s);
-        let ln_m = self.kfma(self.kmul(s, z), self.dhorner(z, &kc::LN_ATANH_P), self.kadd(s, s));
-        let l = self.kfma(ln_m, self.df(core::f64::consts::LOG2_E), ef);
-        let l = self.ksel(
-            self.kcmp(OEQ, ax, self.df(0.0)),
-            self.df(f64::NEG_INFINITY),
-            self.ksel(self.kcmp(OLT, ax, self.df(f64::INFINITY)), l, ax),
-        );
-        let t = self.kmul(y, l);
-        let t = self.ksel(self.kcmp(OLT, self.df(kc::POW_T_MAX), t), self.df(kc::POW_T_MAX), t);
-        let tiny = self.kcmp(OLT, t, self.df(kc::POW_T_MIN));
-        let n = self.kintr("llvm.roundeven", t);
-        let p = self.dhorner(self.ksub(t, n), &kc::EXP2_D);
-        let nb = self.dbits(self.kadd(n, self.df(magic + 1023.0)));
-        let scale = self.dfrom_bits(self.kint('<', nb, self.di(52)));
-        let a = self.ksel(tiny, self.df(0.0), self.kmul(p, scale));
-        self.b.build_float_trunc(a, self.kvt(), "").expect("fptrunc")
-    }
-
-    /// `ax^y` for `ax >= 0` in double-f32 (the library's `pow_mag_dd`).
-    fn k_pow_mag_dd(&self, ax: V<'c>, y: V<'c>) -> V<'c> {
-        use FloatPredicate::{OEQ, OLT};
-        let (lh, ll) = self.k_log2_dd(ax);
+        // log2_split
+        let tiny = self.kcmp(OLT, ax, self.kf(f32::MIN_POSITIVE));
+        let xs = self.ksel(tiny, self.kmul(ax, self.kf(16_777_216.0)), ax);
+        let u = self.kbits(xs);
+        let ei = self.kint('>', self.kint('-', u, self.ki(kc::SQRT_HALF_BITS)), self.ki(23));
+        let m = self.kfrom_bits(self.kint('-', u, self.kint('<', ei, self.ki(23))));
+        let e = self.ksub(self.kfrom_int(ei), self.ksel(tiny, self.kf(24.0), self.kf(0.0)));
+        let f = self.ksub(m, self.kf(1.0));
+        let l = self.kmul(f, self.khorner(f, &kc::LOG2_Q));
+        let s = self.kadd(e, l);
+        let sl = self.kadd(self.ksub(e, s), l);
+        // log2 of 0 and inf
         let inf = self.kf(f32::INFINITY);
         let finite = self.kcmp(OLT, ax, inf);
         let zero = self.kcmp(OEQ, ax, self.kf(0.0));
-        let lh = self.ksel(zero, self.kf(f32::NEG_INFINITY), self.ksel(finite, lh, ax));
-        let ll = self.ksel(self.kand(finite, self.knot(zero)), ll, self.kf(0.0));
+        let lh = self.ksel(zero, self.kf(f32::NEG_INFINITY), self.ksel(finite, s, ax));
+        let ll = self.ksel(self.kand(finite, self.knot(zero)), sl, self.kf(0.0));
         let th = self.kmul(y, lh);
         let tl = self.kfma(y, ll, self.kfma(y, lh, self.kneg(th)));
         self.k_exp2_dd(th, tl)
     }
 
-    /// `x^y` (C99 `pow`): the magnitude in f64 lanes at 4 and 8 lanes, in double-f32 at 16,
-    /// as the library's widths compute it.
+    /// `x^y` (C99 `pow`), as the library computes it.
     fn k_pow(&self, x: V<'c>, y: V<'c>) -> V<'c> {
         use FloatPredicate::{OEQ, OLT};
         let ax = self.k_abs(x);
-        let a = if self.t.lanes == kc::POW_DD_LANES { self.k_pow_mag_dd(ax, y) } else { self.k_pow_mag_d(ax, y) };
+        let a = self.k_pow_mag(ax, y);
         let inf = self.kf(f32::INFINITY);
         let finite = self.kcmp(OLT, ax, inf);
 

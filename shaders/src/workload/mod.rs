@@ -11,7 +11,8 @@
 //!   [`WorkloadShader`], their closed set by workload name.
 //! - [`WorkloadShader::sl_source`]: the same four shaders as ordinary `.sl` shaders
 //!   (`shaders/rsl/workload/`, embedded), for the interpreter and the JIT.
-//! - [`lights`]: the §3 lights (the same as [`crate::table1_lights`]).
+//! - [`lights`]: the §3 lights (the same as [`crate::table1_lights`]), and [`light_data`], the
+//!   same as data.
 //! - [`reference`]: the reference arrays and the §6 error metrics.
 //!
 //! ```
@@ -20,7 +21,7 @@
 //! let scene = WorkloadScene::new();
 //! assert_eq!(scene.n_hit(), 183_020);
 //! let shader = WorkloadShader::by_name("plastic").expect("a workload shader");
-//! let ci = scene.shade_all::<f32>(&shader, &workload::lights());
+//! let ci = scene.shade_all::<f32, _>(&shader, &workload::lights());
 //! let image = scene.to_image(&ci);
 //! let reference = workload::reference::load_reference("plastic").expect("reference in the repo");
 //! assert!(workload::reference::image_error(&image, &reference).max_abs_err <= 1e-4);
@@ -42,6 +43,14 @@ use anysl_core::{ParamError, ParamValue, ShaderMeta, SurfaceVisitor};
 #[must_use]
 pub fn lights() -> Vec<Light> {
     table1_lights()
+}
+
+/// [`lights`] as data ([`LightData`](anysl_core::LightData)): what a shading call over many
+/// packets hands its contexts with an `f32`-based float type, so that the light loops read a
+/// few numbers per light instead of running the light shaders (the same bits).
+#[must_use]
+pub fn light_data() -> Vec<anysl_core::LightData> {
+    anysl_core::LightData::of_all(&lights()).expect("the workload's lights are point and ambient lights")
 }
 
 /// The four workload shaders, dispatched by `match` (see [`crate::Surface`]).

@@ -2,10 +2,9 @@
 //! intersected in f64, and the hit points as shading inputs in structure-of-arrays form.
 
 use anysl_core::prelude::*;
-use anysl_core::{PointContext, SurfaceVisitor};
+use anysl_core::{LightSource, PointContext, SurfaceVisitor};
 
 use super::WorkloadShader;
-use crate::Light;
 
 /// Image side in pixels.
 pub const SIZE: usize = 512;
@@ -14,7 +13,7 @@ const EYE: [f64; 3] = [0.0, 0.0, 3.0];
 /// Half-extent of the image plane at distance 1.
 const HALF_EXTENT: f64 = 0.375;
 /// Inputs are padded to a multiple of this many points, so every SIMD width divides them.
-pub const PAD: usize = 16;
+pub const PAD: usize = 32;
 
 /// Input arrays of [`WorkloadScene`] (each `x, y, z`).
 const P: usize = 0;
@@ -69,6 +68,8 @@ fn intersect(d: [f64; 3]) -> Option<[f64; 3]> {
 #[derive(Clone, Debug)]
 pub struct WorkloadScene {
     n_hit: usize,
+    /// Points per field including the padding.
+    padded: usize,
     pixels: Vec<u32>,
     f32s: Vec<Vec<f32>>,
     f64s: Vec<Vec<f64>>,
@@ -127,7 +128,7 @@ impl WorkloadScene {
             let last = *a.last().expect("the sphere is in view");
             a.resize(padded, last);
         }
-        Self { n_hit, pixels, f32s, f64s }
+        Self { n_hit, padded, pixels, f32s, f64s }
     }
 
     /// Number of hit points (183 020).
@@ -178,10 +179,22 @@ impl WorkloadScene {
             if F::UNIT_ROUNDOFF < 1e-10 && k < F64_FIELDS {
                 F::from_lanes(&self.f64s[k][i..i + F::LANES])
             } else {
-                F::load(&self.f32s[k][i..])
+                F::load(self.f32_lanes::<F>(k, i))
             }
         };
         Vec3::new(c(k), c(k + 1), c(k + 2))
+    }
+
+    /// Points `i .. i + F::LANES` of f32 field `k`: one range check for the packet instead of
+    /// one per field (every field has [`WorkloadScene::padded_len`] points).
+    ///
+    /// # Panics
+    /// When the points pass the padded inputs.
+    #[inline(always)]
+    fn f32_lanes<F: ShadingFloat>(&self, k: usize, i: usize) -> &[f32] {
+        assert!(k < F32_FIELDS && i + F::LANES <= self.padded, "points {i}.. of {} in field {k}", self.padded);
+        // SAFETY: every field holds `self.padded` values (`new`), checked above.
+        unsafe { core::slice::from_raw_parts(self.f32s.get_unchecked(k).as_ptr().add(i), F::LANES) }
     }
 
     /// The globals of points `i .. i + F::LANES`: `P`, `N` (= `Ng`), `I = -V`, the eye as `E`,
@@ -224,28 +237,28 @@ impl WorkloadScene {
     /// with instantiation `F`: writes `Ci` (r, g, b) to `out` as f32 lane values (the value
     /// part for duals, the midpoint for intervals). Monomorphized per concrete shader through
     /// [`SurfaceShader::visit`], so the shader is inlined into the loop.
-    pub fn shade<F: ShadingFloat>(
+    pub fn shade<F: ShadingFloat, L: LightSource>(
         &self,
         shader: &WorkloadShader,
-        lights: &[Light],
+        lights: &[L],
         start: usize,
         out: [&mut [f32]; 3],
     ) {
-        struct Job<'a, F> {
+        struct Job<'a, F, L> {
             scene: &'a WorkloadScene,
-            lights: &'a [Light],
+            lights: &'a [L],
             start: usize,
             out: [&'a mut [f32]; 3],
             _f: core::marker::PhantomData<F>,
         }
-        impl<F: ShadingFloat> SurfaceVisitor for Job<'_, F> {
+        impl<F: ShadingFloat, L: LightSource> SurfaceVisitor for Job<'_, F, L> {
             type Output = ();
             #[inline(never)]
             fn visit<S: SurfaceShader>(self, shader: &S) {
-                self.scene.shade_surface::<F, S>(shader, self.lights, self.start, self.out);
+                self.scene.shade_surface::<F, S, L>(shader, self.lights, self.start, self.out);
             }
         }
-        shader.visit(Job::<F> { scene: self, lights, start, out, _f: core::marker::PhantomData });
+        shader.visit(Job::<F, L> { scene: self, lights, start, out, _f: core::marker::PhantomData });
     }
 
     /// [`WorkloadScene::shade`] for any surface shader (an interpreted or JIT-compiled `.sl`
@@ -256,10 +269,10 @@ impl WorkloadScene {
     /// When the three outputs differ in length, the length is not a multiple of `F::LANES` or
     /// the range passes the padded inputs.
     #[inline(always)]
-    pub fn shade_surface<F: ShadingFloat, S: SurfaceShader>(
+    pub fn shade_surface<F: ShadingFloat, S: SurfaceShader, L: LightSource>(
         &self,
         shader: &S,
-        lights: &[Light],
+        lights: &[L],
         start: usize,
         out: [&mut [f32]; 3],
     ) {
@@ -284,13 +297,13 @@ impl WorkloadScene {
     ///
     /// # Panics
     /// As [`WorkloadScene::shade_surface`], and when `chunks` is 0.
-    pub fn shade_batched<F: ShadingFloat>(
+    pub fn shade_batched<F: ShadingFloat, L: LightSource>(
         &self,
-        lights: &[Light],
+        lights: &[L],
         start: usize,
         out: [&mut [f32]; 3],
         chunks: usize,
-        mut shade_batch: impl FnMut(&mut [PointContext<'_, F, Light>], &mut [SurfaceOutput<F>]),
+        mut shade_batch: impl FnMut(&mut [PointContext<'_, F, L>], &mut [SurfaceOutput<F>]),
     ) {
         assert!(chunks > 0, "a batch needs at least one chunk");
         let [r, g, b] = out;
@@ -328,22 +341,26 @@ impl WorkloadScene {
 
     /// Shades every point with `F` on the calling thread; returns `Ci` as three padded arrays.
     #[must_use]
-    pub fn shade_all<F: ShadingFloat>(&self, shader: &WorkloadShader, lights: &[Light]) -> [Vec<f32>; 3] {
+    pub fn shade_all<F: ShadingFloat, L: LightSource>(&self, shader: &WorkloadShader, lights: &[L]) -> [Vec<f32>; 3] {
         let n = self.padded_len();
         let [mut r, mut g, mut b] = [vec![0.0; n], vec![0.0; n], vec![0.0; n]];
-        self.shade::<F>(shader, lights, 0, [&mut r, &mut g, &mut b]);
+        self.shade::<F, L>(shader, lights, 0, [&mut r, &mut g, &mut b]);
         [r, g, b]
     }
 
     /// Shades the points with `F` and keeps full lane values as f64 (for the f64 reference).
     #[must_use]
-    pub fn shade_all_f64<F: ShadingFloat>(&self, shader: &WorkloadShader, lights: &[Light]) -> [Vec<f64>; 3] {
-        struct Job<'a, F> {
+    pub fn shade_all_f64<F: ShadingFloat, L: LightSource>(
+        &self,
+        shader: &WorkloadShader,
+        lights: &[L],
+    ) -> [Vec<f64>; 3] {
+        struct Job<'a, F, L> {
             scene: &'a WorkloadScene,
-            lights: &'a [Light],
+            lights: &'a [L],
             _f: core::marker::PhantomData<F>,
         }
-        impl<F: ShadingFloat> SurfaceVisitor for Job<'_, F> {
+        impl<F: ShadingFloat, L: LightSource> SurfaceVisitor for Job<'_, F, L> {
             type Output = [Vec<f64>; 3];
             fn visit<S: SurfaceShader>(self, shader: &S) -> [Vec<f64>; 3] {
                 let n = self.scene.padded_len();
@@ -360,7 +377,7 @@ impl WorkloadScene {
                 out
             }
         }
-        shader.visit(Job::<F> { scene: self, lights, _f: core::marker::PhantomData })
+        shader.visit(Job::<F, L> { scene: self, lights, _f: core::marker::PhantomData })
     }
 
     /// Scatters per-hit colours into a 512×512×3 image (`[row][col][channel]`, black

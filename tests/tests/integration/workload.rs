@@ -140,7 +140,7 @@ fn f64_matches_check_values_and_reference() {
     let lights = workload::lights();
     for (name, [mean, p0, p1, p2]) in table {
         let shader = WorkloadShader::by_name(name).expect("a workload shader");
-        let ci = s.shade_all_f64::<f64>(&shader, &lights);
+        let ci = s.shade_all_f64::<f64, _>(&shader, &lights);
         let n = s.n_hit();
         for ch in 0..3 {
             let m = ci[ch][..n].iter().sum::<f64>() / n as f64;
@@ -166,7 +166,7 @@ fn check_instantiation<F: ShadingFloat>() {
     let s = scene();
     let lights = workload::lights();
     for shader in WorkloadShader::all() {
-        let image = s.to_image(&s.shade_all::<F>(&shader, &lights));
+        let image = s.to_image(&s.shade_all::<F, _>(&shader, &lights));
         let err = reference::image_error(&image, reference_image(shader.name()));
         assert!(err.max_abs_err <= 1e-4 && err.pixels_over_1e3 == 0, "{} with {}: {err:?}", shader.name(), F::NAME);
     }
@@ -268,7 +268,7 @@ fn interp_matches_reference() {
         let interp = interp_shader(&shader);
         let masks = vec![<F32x16 as ShadingFloat>::Mask::splat(true); 16];
         let [mut r, mut g, mut b] = [vec![0.0; n], vec![0.0; n], vec![0.0; n]];
-        s.shade_batched::<F32x16>(&lights, 0, [&mut r, &mut g, &mut b], 16, |ctxs, outs| {
+        s.shade_batched::<F32x16, _>(&lights, 0, [&mut r, &mut g, &mut b], 16, |ctxs, outs| {
             interp.shade_batch(ctxs, &masks, outs)
         });
         let err = reference::image_error(&s.to_image(&[r, g, b]), reference_image(shader.name()));
@@ -299,7 +299,7 @@ fn shade_subset<F: ShadingFloat, S: anysl_core::SurfaceShader>(
     let [mut r, mut g, mut b] = [vec![f32::NAN; n], vec![f32::NAN; n], vec![f32::NAN; n]];
     for start in (0..n).step_by(16 * 7) {
         let at = start..start + 16;
-        s.shade_surface::<F, S>(shader, lights, start, [&mut r[at.clone()], &mut g[at.clone()], &mut b[at]]);
+        s.shade_surface::<F, S, _>(shader, lights, start, [&mut r[at.clone()], &mut g[at.clone()], &mut b[at]]);
     }
     [r, g, b]
 }
@@ -345,9 +345,9 @@ fn jit_matches_reference() {
             let [mut r, mut g, mut b] = [vec![0.0; n], vec![0.0; n], vec![0.0; n]];
             let out = [&mut r[..], &mut g[..], &mut b[..]];
             if lanes == 8 {
-                s.shade_surface::<F32x8, _>(&jit, &lights, 0, out);
+                s.shade_surface::<F32x8, _, _>(&jit, &lights, 0, out);
             } else {
-                s.shade_surface::<F32x16, _>(&jit, &lights, 0, out);
+                s.shade_surface::<F32x16, _, _>(&jit, &lights, 0, out);
             }
             full([r, g, b], label);
         }
