@@ -232,6 +232,21 @@ impl<F: ShadingFloat> ShadingFloat for Dual<F> {
         let pick = <Self as ShadingFloat>::select(take_rhs, rhs, self);
         Self { val: self.val.max(rhs.val), ..pick }
     }
+    /// The value fused; `∂(a·m + c) = ∂a·m + a·∂m + ∂c`.
+    #[inline(always)]
+    fn mul_add(self, m: Self, a: Self) -> Self {
+        Self {
+            val: self.val.mul_add(m.val, a.val),
+            ddx: self.ddx.mul_add(m.val, self.val.mul_add(m.ddx, a.ddx)),
+            ddy: self.ddy.mul_add(m.val, self.val.mul_add(m.ddy, a.ddy)),
+        }
+    }
+    /// `-1/(2x√x) = -r³/2`; 0 where not finite (at x = 0).
+    #[inline(always)]
+    fn rsqrt(self) -> Self {
+        let r = self.val.rsqrt();
+        self.chain(r, finite_or_zero(F::c(-0.5) * r * r * r))
+    }
     /// `1/(2√x)`; 0 at x = 0.
     #[inline(always)]
     fn sqrt(self) -> Self {

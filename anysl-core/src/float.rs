@@ -265,6 +265,24 @@ pub trait ShadingFloat:
     fn max(self, rhs: Self) -> Self;
     /// √x (NaN for x < 0).
     fn sqrt(self) -> Self;
+    /// 1/√x: `+0 → +inf`, `-0 → -inf`, `+inf → +0`, NaN for x < 0. Correctly rounded for
+    /// `f64` (and outward-rounded for intervals); for `f32` and its SIMD types the hardware's
+    /// estimate refined by one Newton step ([`rsqrt_f32`]) — within 1 ulp with AVX-512's
+    /// 14-bit estimate, 2 ulp with the 12-bit SSE/AVX one, and the same bits in scalar `f32`
+    /// and every SIMD lane. It takes the place of a square root and a divide, the two slowest
+    /// operations of a shading chain (`normalize`, every highlight).
+    #[inline(always)]
+    fn rsqrt(self) -> Self {
+        Self::c(1.0) / self.sqrt()
+    }
+    /// `self·m + a`. Fused (one rounding) for the types with a fused multiply-add — `f32`,
+    /// `f64` and the SIMD types on FMA hardware, dual numbers in their value — so that every
+    /// instantiation of a library function that uses it computes the same bits lane for lane;
+    /// intervals evaluate the product and the sum, each rounded outward.
+    #[inline(always)]
+    fn mul_add(self, m: Self, a: Self) -> Self {
+        self * m + a
+    }
     /// e^x.
     fn exp(self) -> Self;
     /// 2^x.
@@ -342,8 +360,64 @@ pub trait ShadingFloat:
     }
 }
 
+/// Whether [`rsqrt_f32`] starts from AVX-512's 14-bit estimate (`vrsqrt14`, which takes
+/// subnormal inputs as they are) rather than the 12-bit SSE/AVX one (which takes them as 0).
+/// Every SIMD width uses the same estimate as scalar `f32`, so the lanes agree bit for bit.
+pub const RSQRT_ESTIMATE_14: bool =
+    cfg!(all(target_arch = "x86_64", target_feature = "avx512f", target_feature = "avx512vl"));
+
+/// The hardware estimate of 1/√x; off x86-64, the quotient itself (the Newton step then keeps
+/// it).
+#[inline(always)]
+fn rsqrt_estimate_f32(x: f32) -> f32 {
+    #[cfg(all(target_arch = "x86_64", target_feature = "avx512f", target_feature = "avx512vl"))]
+    // SAFETY: AVX-512F is enabled for this build.
+    return unsafe {
+        use core::arch::x86_64::{_mm_cvtss_f32, _mm_rsqrt14_ss, _mm_set_ss};
+        let v = _mm_set_ss(x);
+        _mm_cvtss_f32(_mm_rsqrt14_ss(v, v))
+    };
+    #[cfg(all(
+        target_arch = "x86_64",
+        target_feature = "sse",
+        not(all(target_feature = "avx512f", target_feature = "avx512vl"))
+    ))]
+    // SAFETY: SSE is enabled for this build.
+    return unsafe {
+        use core::arch::x86_64::{_mm_cvtss_f32, _mm_rsqrt_ss, _mm_set_ss};
+        _mm_cvtss_f32(_mm_rsqrt_ss(_mm_set_ss(x)))
+    };
+    #[allow(unreachable_code)]
+    {
+        1.0 / x.sqrt()
+    }
+}
+
+/// `1/√x` in `f32` as every `f32`-based type computes it: the hardware estimate `y`, one
+/// Newton step `y + y/2·(1 - (x·y)·y)` (written so that no intermediate overflows for
+/// subnormal `x`), and the estimate itself where the step gives NaN (`x` = ±0, +inf, NaN or
+/// negative: the estimate is already the answer). The 12-bit estimate takes subnormal inputs
+/// as 0, so those are scaled by 2^24 first. The SIMD kernels of `anysl-simd` compute the same
+/// operations lane by lane (tested bit for bit).
+#[inline(always)]
+#[must_use]
+pub fn rsqrt_f32(x: f32) -> f32 {
+    let tiny = !RSQRT_ESTIMATE_14 && x.abs() < f32::MIN_POSITIVE;
+    let xs = if tiny { x * 16_777_216.0 } else { x };
+    let y = rsqrt_estimate_f32(xs);
+    let t = xs * y;
+    let e = (-t).mul_add(y, 1.0);
+    let r = (y * 0.5).mul_add(e, y);
+    let r = if r.is_nan() { y } else { r };
+    if tiny {
+        r * 4096.0
+    } else {
+        r
+    }
+}
+
 macro_rules! impl_scalar_float {
-    ($t:ident, $name:literal, $roundoff:expr) => {
+    ($t:ident, $name:literal, $roundoff:expr, $rsqrt:expr) => {
         impl Blend<$t> for $t {
             #[inline(always)]
             fn blend(m: bool, a: Self, b: Self) -> Self {
@@ -439,6 +513,14 @@ macro_rules! impl_scalar_float {
                 <$t>::sqrt(self)
             }
             #[inline(always)]
+            fn mul_add(self, m: Self, a: Self) -> Self {
+                <$t>::mul_add(self, m, a)
+            }
+            #[inline(always)]
+            fn rsqrt(self) -> Self {
+                $rsqrt(self)
+            }
+            #[inline(always)]
             fn exp(self) -> Self {
                 <$t>::exp(self)
             }
@@ -504,5 +586,5 @@ macro_rules! impl_scalar_float {
     };
 }
 
-impl_scalar_float!(f32, "f32", 5.960464477539063e-8);
-impl_scalar_float!(f64, "f64", 1.1102230246251565e-16);
+impl_scalar_float!(f32, "f32", 5.960464477539063e-8, rsqrt_f32);
+impl_scalar_float!(f64, "f64", 1.1102230246251565e-16, |x: f64| 1.0 / x.sqrt());

@@ -34,7 +34,7 @@ pub use context::{
     LightData, LightKind, LightOutput, LightSource, PointContext, ShadingContext, SurfaceOutput, MAX_DATA_LIGHTS,
 };
 pub use exec::{Exec, INTERVAL_LOOP_LIMIT};
-pub use float::{Blend, LatticeBits, Mask, PureFn, ShadingFloat};
+pub use float::{rsqrt_f32, Blend, LatticeBits, Mask, PureFn, ShadingFloat, RSQRT_ESTIMATE_14};
 pub use shader::{
     DisplacementShader, LightShader, ParamError, ParamField, ParamInfo, ParamType, ParamValue, Shader, ShaderKind,
     ShaderMeta, Storage, SurfaceShader, SurfaceVisitor,

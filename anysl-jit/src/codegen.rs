@@ -537,6 +537,26 @@ impl<'c, 'm> Cg<'c, 'm> {
         };
         S { r: a.r, v: self.arith('*', a.v, b.v), d }
     }
+    /// `a·m + c` as the library's `ShadingFloat::mul_add`: fused (`llvm.fma`) where the
+    /// library's is ([`anysl_simd::kernel_consts::FUSED_MUL_ADD`]), dual numbers fused in
+    /// their value with `∂a·m + (a·∂m + ∂c)` as derivatives.
+    fn fma(&self, a: S<'c>, m: S<'c>, c: S<'c>) -> S<'c> {
+        if !anysl_simd::kernel_consts::FUSED_MUL_ADD {
+            return self.add(self.mul(a, m), c);
+        }
+        let r = a.r.max(m.r).max(c.r);
+        let (a, m, c) = (self.to(a, r), self.to(m, r), self.to(c, r));
+        let f = |x: BasicValueEnum<'c>, y: BasicValueEnum<'c>, z: BasicValueEnum<'c>| {
+            self.call_intr("llvm.fma", &[x.get_type()], &[x, y, z])
+        };
+        let d = match (a.d, m.d, c.d) {
+            (Some((ax, ay)), Some((mx, my)), Some((cx, cy))) => {
+                Some((f(ax, m.v, f(a.v, mx, cx)), f(ay, m.v, f(a.v, my, cy))))
+            }
+            _ => None,
+        };
+        S { r, v: f(a.v, m.v, c.v), d }
+    }
     fn finite_or_zero(&self, x: BasicValueEnum<'c>) -> BasicValueEnum<'c> {
         let ax = self.unary_intr("llvm.fabs", x);
         let inf = self.fconst_r(f64::INFINITY, Repr::V);
@@ -586,10 +606,117 @@ impl<'c, 'm> Cg<'c, 'm> {
         });
         S { r: a.r, v: s, d }
     }
+    /// A constant of `x`'s shape (scalar or vector of the variant's lanes).
+    fn const_like(&self, x: BasicValueEnum<'c>, v: f64) -> BasicValueEnum<'c> {
+        self.fconst_r(v, if x.is_vector_value() { Repr::V } else { Repr::U })
+    }
+    /// `a·m + c` fused on raw values ([`Cg::fma`] without derivatives).
+    fn fma_raw(&self, a: BasicValueEnum<'c>, m: BasicValueEnum<'c>, c: BasicValueEnum<'c>) -> BasicValueEnum<'c> {
+        if anysl_simd::kernel_consts::FUSED_MUL_ADD {
+            self.call_intr("llvm.fma", &[a.get_type()], &[a, m, c])
+        } else {
+            self.arith('+', self.arith('*', a, m), c)
+        }
+    }
+    /// The hardware estimate of 1/√x that `anysl_core::rsqrt_f32` and the SIMD kernels start
+    /// from — AVX-512's `vrsqrt14` or the SSE/AVX `rsqrt` ([`anysl_core::RSQRT_ESTIMATE_14`])
+    /// — for a scalar or a vector of 4, 8 or 16 lanes.
+    fn rsqrt_estimate(&self, x: BasicValueEnum<'c>) -> BasicValueEnum<'c> {
+        if !cfg!(target_arch = "x86_64") {
+            return self.arith('/', self.const_like(x, 1.0), self.unary_intr("llvm.sqrt", x));
+        }
+        let v4 = self.f32t.vec_type(4);
+        let ones8 = self.cx.i8_type().const_all_ones();
+        let est14 = anysl_core::RSQRT_ESTIMATE_14;
+        match x {
+            BasicValueEnum::FloatValue(f) => {
+                let zero = self.i32c(0);
+                let xv: BasicValueEnum<'c> =
+                    self.b.build_insert_element(v4.get_undef(), f, zero, "").expect("insert").into();
+                let r = if est14 {
+                    self.call_intr("llvm.x86.avx512.rsqrt14.ss", &[], &[xv, xv, v4.const_zero().into(), ones8.into()])
+                } else {
+                    self.call_intr("llvm.x86.sse.rsqrt.ss", &[], &[xv])
+                };
+                self.b.build_extract_element(r.into_vector_value(), zero, "").expect("extract")
+            }
+            BasicValueEnum::VectorValue(v) => {
+                let n = v.get_type().get_size();
+                let vz: BasicValueEnum<'c> = v.get_type().const_zero().into();
+                match (n, est14) {
+                    (4, true) => self.call_intr("llvm.x86.avx512.rsqrt14.ps.128", &[], &[x, vz, ones8.into()]),
+                    (8, true) => self.call_intr("llvm.x86.avx512.rsqrt14.ps.256", &[], &[x, vz, ones8.into()]),
+                    (16, true) => self.call_intr(
+                        "llvm.x86.avx512.rsqrt14.ps.512",
+                        &[],
+                        &[x, vz, self.cx.i16_type().const_all_ones().into()],
+                    ),
+                    (4, false) => self.call_intr("llvm.x86.sse.rsqrt.ps", &[], &[x]),
+                    (8, false) => self.call_intr("llvm.x86.avx.rsqrt.ps.256", &[], &[x]),
+                    (16, false) => {
+                        // Two 8-lane halves, as the library's 16 lanes without AVX-512.
+                        let half = |lo: u32| {
+                            let idx: Vec<_> = (lo..lo + 8).map(|i| self.i32c(u64::from(i))).collect();
+                            let h = self
+                                .b
+                                .build_shuffle_vector(v, v.get_type().get_undef(), VectorType::const_vector(&idx), "")
+                                .expect("shuffle");
+                            self.call_intr("llvm.x86.avx.rsqrt.ps.256", &[], &[h.into()]).into_vector_value()
+                        };
+                        let (a, b) = (half(0), half(8));
+                        let idx: Vec<_> = (0..16).map(|i| self.i32c(i)).collect();
+                        self.b.build_shuffle_vector(a, b, VectorType::const_vector(&idx), "").expect("shuffle").into()
+                    }
+                    _ => panic!("rsqrt estimate of {n} lanes"),
+                }
+            }
+            _ => panic!("rsqrt of a non-float"),
+        }
+    }
+    /// `ShadingFloat::rsqrt` as `f32` and its SIMD types compute it (`anysl_core::rsqrt_f32`):
+    /// the estimate, one Newton step `y + y/2·(1 - (x·y)·y)`, the estimate where that gives
+    /// NaN, subnormal inputs scaled by 2^24 for the 12-bit estimate; dual numbers with the
+    /// derivative `-r³/2` (0 where not finite), as `anysl-ad`.
+    fn rsqrt(&self, a: S<'c>) -> S<'c> {
+        let x = a.v;
+        let c = |v: f64| self.const_like(x, v);
+        let legacy = !anysl_core::RSQRT_ESTIMATE_14;
+        let tiny = legacy.then(|| {
+            self.fcmp_raw(FloatPredicate::OLT, self.unary_intr("llvm.fabs", x), c(f64::from(f32::MIN_POSITIVE)))
+        });
+        let xs = match tiny {
+            Some(t) => self.sel_raw(t, self.arith('*', x, c(16_777_216.0)), x),
+            None => x,
+        };
+        let y = self.rsqrt_estimate(xs);
+        let t = self.arith('*', xs, y);
+        let e = self.fma_raw(self.fneg_raw(t), y, c(1.0));
+        let r = self.fma_raw(self.arith('*', y, c(0.5)), e, y);
+        let r = self.sel_raw(self.fcmp_raw(FloatPredicate::UNO, r, r), y, r);
+        let r = match tiny {
+            Some(t) => self.sel_raw(t, self.arith('*', r, c(4096.0)), r),
+            None => r,
+        };
+        let d = a.d.map(|(dx, dy)| {
+            let k = self.arith('*', self.arith('*', self.arith('*', c(-0.5), r), r), r);
+            let k = self.finite_or_zero(k);
+            (self.arith('*', dx, k), self.arith('*', dy, k))
+        });
+        S { r: a.r, v: r, d }
+    }
     fn minmax(&self, a: S<'c>, b: S<'c>, max: bool) -> S<'c> {
         let (a, b) = self.unify(a, b);
-        let name = if max { "llvm.maxnum" } else { "llvm.minnum" };
-        let v = self.call_intr(name, &[a.v.get_type()], &[a.v, b.v]);
+        let v = if self.t.lanes == 1 {
+            // `f32::max` / `f32::min`.
+            let name = if max { "llvm.maxnum" } else { "llvm.minnum" };
+            self.call_intr(name, &[a.v.get_type()], &[a.v, b.v])
+        } else {
+            // The SIMD library's: `a` NaN → `b`; else x86's `maxps(b, a)` (`b > a ? b : a`,
+            // ties to `a`) — uniform operands too, which the library computes as splats.
+            let p = if max { FloatPredicate::OGT } else { FloatPredicate::OLT };
+            let hw = self.sel_raw(self.fcmp_raw(p, b.v, a.v), b.v, a.v);
+            self.sel_raw(self.fcmp_raw(FloatPredicate::UNO, a.v, a.v), b.v, hw)
+        };
         let d = match (a.d, b.d) {
             (Some((ax, ay)), Some((bx, by))) => {
                 // Derivatives of the operand chosen; ties take `a` (anysl-ad).
@@ -698,9 +825,9 @@ impl<'c, 'm> Cg<'c, 'm> {
 
     // ---------------------------------------------------------------- composite numerics
 
+    /// `Vec3::dot`: `x·x' + (y·y' + z·z')`, fused.
     fn dot(&self, a: &[S<'c>], b: &[S<'c>]) -> S<'c> {
-        let xy = self.add(self.mul(a[0], b[0]), self.mul(a[1], b[1]));
-        self.add(xy, self.mul(a[2], b[2]))
+        self.fma(a[0], b[0], self.fma(a[1], b[1], self.mul(a[2], b[2])))
     }
     fn cross(&self, a: &[S<'c>], b: &[S<'c>]) -> Vec<S<'c>> {
         vec![
@@ -2693,9 +2820,7 @@ impl<'c> Cg<'c, '_> {
                     .map(|x| self.constant_part(x.r, self.unary_intr("llvm.round", x.v)))
                     .collect(),
             ),
-            "inversesqrt" => {
-                Val::Num(nums(self, 0)?.into_iter().map(|x| self.div(self.fc(1.0), self.sqrt(x))).collect())
-            }
+            "inversesqrt" => Val::Num(nums(self, 0)?.into_iter().map(|x| self.rsqrt(x)).collect()),
             "exp" => un_rt(self, rt::un::EXP)?,
             "log" if n == 1 => un_rt(self, rt::un::LOG)?,
             "log" if n == 2 => bin_rt(self, rt::bin::LOG_BASE, nums(self, 0)?.len())?,
@@ -3077,7 +3202,7 @@ impl<'c> Cg<'c, '_> {
     fn normalize(&self, a: &[S<'c>]) -> Vec<S<'c>> {
         let l2 = self.dot(a, a);
         let zero = self.fc(0.0);
-        let inv = self.div(self.fc(1.0), self.sqrt(l2));
+        let inv = self.rsqrt(l2);
         let g = self.cmp(FloatPredicate::OGT, l2, zero);
         let k = self.sel(g, inv, zero);
         let unit: Vec<S<'c>> = a.iter().map(|&c| self.mul(c, k)).collect();
@@ -3123,7 +3248,7 @@ impl<'c> Cg<'c, '_> {
             let den = self.sel(usable, m, self.fc(1.0));
             let w: Vec<S<'c>> = a.iter().map(|&c| self.div(c, den)).collect();
             let wl2 = self.dot(&w, &w);
-            let wk = self.sel(self.cmp(FloatPredicate::OGT, wl2, zero), self.div(self.fc(1.0), self.sqrt(wl2)), zero);
+            let wk = self.sel(self.cmp(FloatPredicate::OGT, wl2, zero), self.rsqrt(wl2), zero);
             let mut agg = sty.get_undef();
             for (k, &c) in w.iter().enumerate() {
                 let v = self.to(self.mul(c, wk), r).v;

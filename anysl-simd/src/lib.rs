@@ -350,6 +350,14 @@ macro_rules! simd_width {
                 Self(self.0.sqrt())
             }
             #[inline(always)]
+            fn mul_add(self, m: Self, a: Self) -> Self {
+                Self(self.0.mul_add(m.0, a.0))
+            }
+            #[inline(always)]
+            fn rsqrt(self) -> Self {
+                Self(math::rsqrt(self.0))
+            }
+            #[inline(always)]
             fn exp(self) -> Self {
                 Self(math::exp(self.0))
             }

@@ -54,6 +54,8 @@ pub(crate) trait Wide:
     fn fma(self, m: Self, a: Self) -> Self;
     /// Correctly rounded square root.
     fn sqrt(self) -> Self;
+    /// The hardware estimate of 1/√x, the one `anysl_core::rsqrt_f32` starts from.
+    fn rsqrt_estimate(self) -> Self;
     /// Round toward -inf.
     fn floor(self) -> Self;
     /// Round toward zero.
@@ -64,6 +66,10 @@ pub(crate) trait Wide:
     fn to_int(self) -> Self::I;
     /// Integer to float, rounding to nearest.
     fn from_int(i: Self::I) -> Self;
+    /// x86's `minps(self, r)`: `self < r ? self : r` (`r` where either is NaN).
+    fn hw_min(self, r: Self) -> Self;
+    /// x86's `maxps(self, r)`: `self > r ? self : r` (`r` where either is NaN).
+    fn hw_max(self, r: Self) -> Self;
     /// `self < r` mask.
     fn lt(self, r: Self) -> Self;
     /// `self <= r` mask.
@@ -74,6 +80,8 @@ pub(crate) trait Wide:
     fn select(m: Self, a: Self, b: Self) -> Self;
     /// `m ? a : b` on integer lanes.
     fn select_i(m: Self, a: Self::I, b: Self::I) -> Self::I;
+    /// `a == b` on integer lanes, as a float-lane mask.
+    fn eq_i(a: Self::I, b: Self::I) -> Self;
     /// Some lane of the mask is set.
     fn any(self) -> bool;
     /// Every lane of the mask is set.
@@ -84,7 +92,7 @@ pub(crate) trait Wide:
 
 /// Implements [`Wide`] for a `wide` float type and its integer twin.
 macro_rules! impl_wide {
-    ($f:ident, $i:ident, $from_int:ident) => {
+    ($f:ident, $i:ident, $from_int:ident, $rsqrt:ident) => {
         impl Wide for wide::$f {
             type I = wide::$i;
             #[inline(always)]
@@ -112,6 +120,10 @@ macro_rules! impl_wide {
                 wide::$f::sqrt(self)
             }
             #[inline(always)]
+            fn rsqrt_estimate(self) -> Self {
+                $rsqrt(self)
+            }
+            #[inline(always)]
             fn floor(self) -> Self {
                 wide::$f::floor(self)
             }
@@ -132,6 +144,14 @@ macro_rules! impl_wide {
                 wide::$f::$from_int(i)
             }
             #[inline(always)]
+            fn hw_min(self, r: Self) -> Self {
+                self.fast_min(r)
+            }
+            #[inline(always)]
+            fn hw_max(self, r: Self) -> Self {
+                self.fast_max(r)
+            }
+            #[inline(always)]
             fn lt(self, r: Self) -> Self {
                 self.simd_lt(r)
             }
@@ -146,6 +166,10 @@ macro_rules! impl_wide {
             #[inline(always)]
             fn select(m: Self, a: Self, b: Self) -> Self {
                 m.select(a, b)
+            }
+            #[inline(always)]
+            fn eq_i(a: Self::I, b: Self::I) -> Self {
+                wide::bytemuck::cast(a.simd_eq(b))
             }
             #[inline(always)]
             fn select_i(m: Self, a: Self::I, b: Self::I) -> Self::I {
@@ -176,9 +200,79 @@ macro_rules! impl_wide {
     };
 }
 
-impl_wide!(f32x4, i32x4, from_i32x4);
-impl_wide!(f32x8, i32x8, from_i32x8);
-impl_wide!(f32x16, i32x16, from_i32x16);
+impl_wide!(f32x4, i32x4, from_i32x4, rsqrt_estimate_x4);
+impl_wide!(f32x8, i32x8, from_i32x8, rsqrt_estimate_x8);
+impl_wide!(f32x16, i32x16, from_i32x16, rsqrt_estimate_x16);
+
+#[cfg(target_arch = "x86_64")]
+use core::arch::x86_64 as arch;
+
+/// The estimate of `anysl_core::rsqrt_f32` at 4 lanes (`vrsqrt14ps` or `rsqrtps`).
+#[inline(always)]
+fn rsqrt_estimate_x4(x: wide::f32x4) -> wide::f32x4 {
+    #[cfg(all(target_arch = "x86_64", target_feature = "avx512f", target_feature = "avx512vl"))]
+    // SAFETY: `__m128` and `wide::f32x4` are four f32 lanes; AVX-512F/VL are enabled.
+    return unsafe { core::mem::transmute(arch::_mm_rsqrt14_ps(core::mem::transmute(x))) };
+    #[cfg(all(
+        target_arch = "x86_64",
+        target_feature = "sse",
+        not(all(target_feature = "avx512f", target_feature = "avx512vl"))
+    ))]
+    // SAFETY: as above, with SSE.
+    return unsafe { core::mem::transmute(arch::_mm_rsqrt_ps(core::mem::transmute(x))) };
+    #[allow(unreachable_code)]
+    wide::f32x4::from(x.to_array().map(|v| 1.0 / v.sqrt()))
+}
+
+/// The estimate at 8 lanes.
+#[inline(always)]
+fn rsqrt_estimate_x8(x: wide::f32x8) -> wide::f32x8 {
+    #[cfg(all(target_arch = "x86_64", target_feature = "avx512f", target_feature = "avx512vl"))]
+    // SAFETY: `__m256` and `wide::f32x8` are eight f32 lanes; AVX-512F/VL are enabled.
+    return unsafe { core::mem::transmute(arch::_mm256_rsqrt14_ps(core::mem::transmute(x))) };
+    #[cfg(all(
+        target_arch = "x86_64",
+        target_feature = "avx",
+        not(all(target_feature = "avx512f", target_feature = "avx512vl"))
+    ))]
+    // SAFETY: as above, with AVX.
+    return unsafe { core::mem::transmute(arch::_mm256_rsqrt_ps(core::mem::transmute(x))) };
+    #[allow(unreachable_code)]
+    wide::f32x8::from(x.to_array().map(|v| 1.0 / v.sqrt()))
+}
+
+/// The estimate at 16 lanes.
+#[inline(always)]
+fn rsqrt_estimate_x16(x: wide::f32x16) -> wide::f32x16 {
+    #[cfg(all(target_arch = "x86_64", target_feature = "avx512f", target_feature = "avx512vl"))]
+    // SAFETY: `__m512` and `wide::f32x16` are sixteen f32 lanes; AVX-512F is enabled.
+    return unsafe { core::mem::transmute(arch::_mm512_rsqrt14_ps(core::mem::transmute(x))) };
+    #[allow(unreachable_code)]
+    {
+        // SAFETY: without AVX-512, `wide::f32x16` is two `f32x8` halves.
+        let h: [wide::f32x8; 2] = unsafe { core::mem::transmute(x) };
+        unsafe { core::mem::transmute([rsqrt_estimate_x8(h[0]), rsqrt_estimate_x8(h[1])]) }
+    }
+}
+
+/// 1/√x, lane for lane `anysl_core::rsqrt_f32`: the estimate, one Newton step
+/// `y + y/2·(1 - (x·y)·y)`, the estimate where the step gives NaN, and (12-bit estimate only)
+/// subnormal inputs scaled by 2^24.
+#[inline(always)]
+pub(crate) fn rsqrt<W: Wide>(x: W) -> W {
+    let tiny = if anysl_core::RSQRT_ESTIMATE_14 { k(0.0) } else { abs(x).lt(k(f32::MIN_POSITIVE)) };
+    let xs = if anysl_core::RSQRT_ESTIMATE_14 { x } else { W::select(tiny, x * k(16_777_216.0), x) };
+    let y = xs.rsqrt_estimate();
+    let t = xs * y;
+    let e = (-t).fma(y, k(1.0));
+    let r = (y * k(0.5)).fma(e, y);
+    let r = W::select(is_nan(r), y, r);
+    if anysl_core::RSQRT_ESTIMATE_14 {
+        r
+    } else {
+        W::select(tiny, r * k(4096.0), r)
+    }
+}
 
 // ---------------------------------------------------------------------------------------
 // Small helpers.
@@ -200,6 +294,37 @@ fn horner<W: Wide, const N: usize>(x: W, c: [f32; N]) -> W {
         acc = acc.fma(x, k(c[i]));
     }
     acc
+}
+
+/// Polynomial `c[0] + c[1] x + …` (at most 16 coefficients) by Estrin's scheme: pairs
+/// `c[2i] + c[2i+1]·x`, then pairs of those with `x²`, `x⁴`, … — the FMAs of Horner's rule
+/// in a tree of depth ⌈log2 N⌉ instead of a chain of N - 1, so its latency overlaps with the
+/// rest of a shading chain. Each level rounds once more than Horner's last step; where the
+/// constant term dominates, take it out ([`estrin1`]).
+#[inline(always)]
+fn estrin<W: Wide>(x: W, c: &[f32]) -> W {
+    let mut v = [k::<W>(0.0); 16];
+    let mut n = c.len().div_ceil(2);
+    for i in 0..n {
+        v[i] = if 2 * i + 1 < c.len() { x.fma(k(c[2 * i + 1]), k(c[2 * i])) } else { k(c[2 * i]) };
+    }
+    let mut p = x;
+    while n > 1 {
+        p = p * p;
+        let m = n.div_ceil(2);
+        for i in 0..m {
+            v[i] = if 2 * i + 1 < n { p.fma(v[2 * i + 1], v[2 * i]) } else { v[2 * i] };
+        }
+        n = m;
+    }
+    v[0]
+}
+
+/// `c[0] + x·E(x)` with `E` the rest of the polynomial by [`estrin`]: the dominant constant
+/// term rounded once, as Horner's rule rounds it.
+#[inline(always)]
+fn estrin1<W: Wide>(x: W, c: &[f32]) -> W {
+    x.fma(estrin(x, &c[1..]), k(c[0]))
 }
 
 /// |x| (clears the sign bit; NaN stays NaN).
@@ -245,16 +370,26 @@ pub(crate) fn round<W: Wide>(x: W) -> W {
     W::select(k::<W>(0.5).le(frac), t + one, t)
 }
 
-/// Minimum; a NaN operand yields the other operand (`f32::min`).
+/// Minimum; a NaN operand yields the other operand (`f32::min`), ties (±0) give `a`.
 #[inline(always)]
 pub(crate) fn min<W: Wide>(a: W, b: W) -> W {
-    W::select(is_nan(a), b, W::select(b.lt(a), b, a))
+    // x86's `minps(b, a)` is `b < a ? b : a`: `a` for ties and where either is NaN, so only a
+    // NaN `a` needs the select (three operations, where the two-select form took four).
+    if cfg!(target_arch = "x86_64") {
+        W::select(is_nan(a), b, b.hw_min(a))
+    } else {
+        W::select(is_nan(a), b, W::select(b.lt(a), b, a))
+    }
 }
 
-/// Maximum; a NaN operand yields the other operand (`f32::max`).
+/// Maximum; a NaN operand yields the other operand (`f32::max`), ties (±0) give `a`.
 #[inline(always)]
 pub(crate) fn max<W: Wide>(a: W, b: W) -> W {
-    W::select(is_nan(a), b, W::select(a.lt(b), b, a))
+    if cfg!(target_arch = "x86_64") {
+        W::select(is_nan(a), b, b.hw_max(a))
+    } else {
+        W::select(is_nan(a), b, W::select(a.lt(b), b, a))
+    }
 }
 
 /// Bits of `(floor(x) as i32)`: saturating, NaN → 0 (Rust `as` semantics).
@@ -286,7 +421,7 @@ fn exp2_dd<W: Wide>(hi: W, lo: W) -> W {
     let l = W::select(in_range, lo, k(0.0));
     let n = h.round_even();
     let r = (h - n) + l;
-    let p = (r * horner(r, EXP2_Q)) + k(1.0);
+    let p = r.fma(estrin(r, &EXP2_Q), k(1.0));
     // With n = -151 (the clamp's floor) the result p·2^-151 < 2^-150 rounds to +0. Those
     // lanes are scaled by 1 and replaced by +0 at the end: the same bits, but no multiply
     // underflows — an underflowing vector product takes a microcode assist of ~100+ cycles
@@ -440,7 +575,7 @@ fn log2_split<W: Wide, const SUBNORMAL: bool>(x: W) -> (W, W) {
     let m = W::from_bits(u - (ei << 23));
     let e = if SUBNORMAL { W::from_int(ei) - bias } else { W::from_int(ei) };
     let f = m - k(1.0); // exact (Sterbenz)
-    let l = f * horner(f, LOG2_Q);
+    let l = f * estrin1(f, &LOG2_Q);
     // Fast2Sum: |e| >= 1 > |l| unless e = 0 (then s = l exactly and sl = 0).
     let s = e + l;
     (s, (e - s) + l)
@@ -451,45 +586,46 @@ fn log2_split<W: Wide, const SUBNORMAL: bool>(x: W) -> (W, W) {
 /// the only error the exponent carries is that of `l = log2 m`: relative to the result about
 /// `ln 2·|y·l|·2^-23` plus an ulp of the exponential. `+0 → 0` for y > 0 and `+inf` for y < 0,
 /// `+inf` as C99; NaN propagates; the caller handles the sign, y = 0 and x = 1.
-///
-/// `GENERAL = false` is [`pow`]'s fast path: every lane a positive normal base or `+0`, with
-/// a finite exponent; the two forms compute the same bits for those lanes.
 #[inline(always)]
-fn pow_mag<W: Wide, const GENERAL: bool>(ax: W, y: W) -> W {
-    let (lh, ll) = log2_split::<W, GENERAL>(ax);
+fn pow_mag<W: Wide>(ax: W, y: W) -> W {
+    let (lh, ll) = log2_split::<W, true>(ax);
+    // log2 of 0 and inf (NaN stays NaN through the arithmetic below).
     let zero = ax.eq(k(0.0));
-    let (lh, ll) = if GENERAL {
-        // log2 of 0 and inf (NaN stays NaN through the arithmetic below).
-        let finite = ax.lt(k(f32::INFINITY));
-        (W::select(zero, k(f32::NEG_INFINITY), W::select(finite, lh, ax)), W::select(finite & !zero, ll, k(0.0)))
-    } else {
-        (lh, ll)
-    };
+    let finite = ax.lt(k(f32::INFINITY));
+    let lh = W::select(zero, k(f32::NEG_INFINITY), W::select(finite, lh, ax));
+    let ll = W::select(finite & !zero, ll, k(0.0));
     let th = y * lh;
     let tl = y.fma(ll, y.fma(lh, -th));
-    let r = exp2_dd(th, tl);
-    if GENERAL {
-        r
-    } else {
-        // +0 went through the arithmetic as 2^-127·1 (finite), and 0^y = +0 for y > 0.
-        W::select(zero, k(0.0), r)
-    }
+    exp2_dd(th, tl)
 }
 
 /// x^y (C99 `pow`, as `f32::powf`) = 2^(y·log2|x|) ([`pow_mag`]), with the sign from the
 /// parity of integer y for negative x.
 #[inline(always)]
 pub(crate) fn pow<W: Wide>(x: W, y: W) -> W {
-    // Where every lane has a positive finite base (or +0 under a positive exponent) and a
-    // finite exponent — every highlight — the magnitude is the answer:
-    // `pow_mag` gives 1 for y = 0 and for x = 1 exactly, and 0 for 0^y. The sign and
-    // special-value fix-ups cost a third of the call otherwise.
+    // The common case — every lane a positive normal base (or +0 under a positive exponent)
+    // with a normal result, every highlight — without the sign and special-value fix-ups and
+    // with the exponential scaled in one step: for those lanes `pow_general` computes the
+    // same operations (`2^n` times a normal `p` is exact in one step or two), so a lane's bits
+    // never depend on its neighbours. +0 goes through the logarithm as 1 (`log2_split` would
+    // give a finite garbage exponent) and is put back at the end.
     let zero: W = k(0.0);
-    let sign = W::from_bits(x.bits() >> 31);
-    let base_ok = !sign & x.lt(k(f32::INFINITY)) & (k::<W>(f32::MIN_POSITIVE).le(x) | (x.eq(zero) & zero.lt(y)));
-    if (base_ok & abs(y).lt(k(f32::INFINITY))).all() {
-        return pow_mag::<W, false>(x, y);
+    // +0 under a positive exponent; +0 under another stays 0 and fails `base_ok`.
+    let plus_zero = W::eq_i(x.bits(), W::splat_i(0)) & zero.lt(y);
+    let xb = W::select(plus_zero, k(1.0), x);
+    let (lh, ll) = log2_split::<W, false>(xb);
+    let th = y * lh;
+    let tl = y.fma(ll, y.fma(lh, -th));
+    let base_ok = k::<W>(f32::MIN_POSITIVE).le(xb) & xb.lt(k(f32::INFINITY));
+    // |th| <= 125: a normal 2^n for n = round(th) (and y finite: an infinite y gives an
+    // infinite or NaN th).
+    if (base_ok & abs(th).le(k(125.0))).all() {
+        let n = th.round_even();
+        let r = (th - n) + tl;
+        let p = r.fma(estrin(r, &EXP2_Q), k(1.0));
+        return W::select(plus_zero, zero, p * pow2i::<W>(n.to_int()));
     }
+    let sign = W::from_bits(x.bits() >> 31);
     pow_general(x, y, sign)
 }
 
@@ -501,7 +637,7 @@ pub(crate) fn pow<W: Wide>(x: W, y: W) -> W {
 #[inline(never)]
 fn pow_general<W: Wide>(x: W, y: W, sign: W) -> W {
     let ax = abs(x);
-    let a = pow_mag::<W, true>(ax, y);
+    let a = pow_mag(ax, y);
     let finite = ax.lt(k(f32::INFINITY));
     let y_int = y.floor().eq(y); // true for ±inf, false for NaN
     let half = y * k(0.5);

@@ -260,9 +260,13 @@ impl<F: ShadingFloat> ShadingFloat for Pair<F> {
     fn is_nan(self) -> Self::Mask {
         PairMask(self.0.is_nan(), self.1.is_nan())
     }
-    unary!(abs, floor, ceil, round, trunc, sqrt, exp, exp2, ln, log2, sin, cos, tan, asin, acos, atan);
+    unary!(abs, floor, ceil, round, trunc, sqrt, rsqrt, exp, exp2, ln, log2, sin, cos, tan, asin, acos, atan);
     unary!(dx, dy, value);
     binary!(min, max, pow, atan2);
+    #[inline(always)]
+    fn mul_add(self, m: Self, a: Self) -> Self {
+        Self(self.0.mul_add(m.0, a.0), self.1.mul_add(m.1, a.1))
+    }
 
     #[inline(always)]
     fn floor_bits(self) -> Self::Bits {

@@ -271,6 +271,8 @@ fn exact_unary<F: Lanes>() {
     check1::<F>("round", &xs, F::round, f32::round, 0.0);
     check1::<F>("trunc", &xs, F::trunc, f32::trunc, 0.0);
     check1::<F>("sqrt", &xs, F::sqrt, f32::sqrt, 0.0);
+    // rsqrt: every lane is scalar f32's (the same estimate and Newton step), bit for bit.
+    check1::<F>("rsqrt", &xs, F::rsqrt, anysl_core::rsqrt_f32, 0.0);
     check1::<F>("neg", &xs, |x| -x, |x| -x, 0.0);
     for &x in &xs {
         let c = F::c(x as f64);
@@ -483,6 +485,32 @@ fn pack_roundtrip<F: Lanes>() {
 // ---------------------------------------------------------------------------------------
 // Transcendentals.
 
+/// `rsqrt` against the exact `1/√x` over every exponent (subnormals included): within 1 ulp
+/// with the 14-bit estimate, 2 with the 12-bit one; the special values exact.
+fn rsqrt_accuracy<F: Lanes>() {
+    let mut rng = Rng::new(40);
+    let mut xs = vec![0.0f32, -0.0, f32::INFINITY, 1.0, 4.0, 0.25, f32::MIN_POSITIVE, 1e-45, 3.4e38];
+    xs.extend(rng.many(RANDOM * 4, |r| r.finite().abs()));
+    xs.extend(rng.many(RANDOM, |r| r.uniform(0.0, 4.0)));
+    let bound = if anysl_core::RSQRT_ESTIMATE_14 { 1.0 } else { 2.0 };
+    let mut worst = 0.0f64;
+    for chunk in xs.chunks(F::LANES) {
+        let mut buf = vec![1.0f32; F::LANES];
+        buf[..chunk.len()].copy_from_slice(chunk);
+        let got = F::load(&buf).rsqrt();
+        for (i, &x) in chunk.iter().enumerate() {
+            let want = 1.0 / f64::from(x).sqrt();
+            let e = ulps(got.lane(i) as f32, if x == 0.0 && x.is_sign_negative() { f64::NEG_INFINITY } else { want });
+            assert!(e <= bound, "rsqrt({x:e}) in {}: {} against {want:e}: {e} ulp", F::NAME, got.lane(i));
+            worst = worst.max(e);
+        }
+    }
+    for x in [-1.0f32, -1e-45, f32::NAN, f32::NEG_INFINITY] {
+        assert!(F::c(f64::from(x)).rsqrt().lane(0).is_nan(), "rsqrt({x}) is NaN");
+    }
+    println!("{}: rsqrt within {worst:.3} ulp", F::NAME);
+}
+
 fn exp_family<F: Lanes>() -> [(&'static str, Stats); 4] {
     let exp_in = unary_inputs(10, &[(-104.0, 89.0), (-1.0, 1.0)]);
     let exp2_in = unary_inputs(11, &[(-151.0, 129.0), (-1.0, 1.0)]);
@@ -652,6 +680,10 @@ macro_rules! width_tests {
             #[test]
             fn exact_unary_ops() {
                 exact_unary::<F>();
+            }
+            #[test]
+            fn rsqrt_within_its_bound() {
+                rsqrt_accuracy::<F>();
             }
             #[test]
             fn exact_binary_ops_and_comparisons() {

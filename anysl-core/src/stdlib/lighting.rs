@@ -29,7 +29,7 @@ pub fn diffuse<F: ShadingFloat, C: ShadingContext<F>>(ctx: &mut C, e: &mut Exec<
         #[inline(always)]
         |e, l, cl| {
             let w = l.normalize().dot(n).max(F::c(0.0));
-            e.update(&mut c, |c| c + cl * w);
+            e.update(&mut c, |c| cl.mul_add(w, c));
         },
     );
     c
@@ -63,13 +63,13 @@ pub fn diffuse_specular<F: ShadingFloat, C: ShadingContext<F>>(
         |e, l, cl| {
             let lu = l.normalize();
             let ndl = lu.dot(n);
-            e.update(&mut diff, |d| d + cl * ndl.max(zero));
+            e.update(&mut diff, |d| cl.mul_add(ndl.max(zero), d));
             // n·normalize(h) without forming normalize(h).
             let h = lu + v;
             let h2 = h.dot(h);
-            let ndh = (n.dot(h) * F::select(h2.gt(zero), F::c(1.0) / h2.sqrt(), zero)).max(zero);
+            let ndh = (n.dot(h) * F::select(h2.gt(zero), h2.rsqrt(), zero)).max(zero);
             let s = ndh.pow(exponent);
-            e.update(&mut spec, |sp| sp + cl * F::select(ndl.gt(zero), s, zero));
+            e.update(&mut spec, |sp| cl.mul_add(F::select(ndl.gt(zero), s, zero), sp));
         },
     );
     (diff, spec)
@@ -109,7 +109,7 @@ pub fn specular<F: ShadingFloat, C: ShadingContext<F>>(
             // The lobe outside the update closure: that closure is not always inlined, and
             // out of line it would compute every derivative of a dual number.
             let w = specularbrdf(l, n, v, roughness);
-            e.update(&mut c, |c| c + cl * w);
+            e.update(&mut c, |c| cl.mul_add(w, c));
         },
     );
     c
@@ -136,7 +136,7 @@ pub fn phong<F: ShadingFloat, C: ShadingContext<F>>(
         #[inline(always)]
         |e, l, cl| {
             let w = r.dot(l.normalize()).max(F::c(0.0)).pow(size);
-            e.update(&mut c, |c| c + cl * w);
+            e.update(&mut c, |c| cl.mul_add(w, c));
         },
     );
     c

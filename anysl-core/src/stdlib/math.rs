@@ -66,11 +66,11 @@ pub fn smoothstep<F: ShadingFloat>(e0: F, e1: F, x: F) -> F {
     F::select(degenerate, step(e0, x), s)
 }
 
-/// 1/√x.
+/// 1/√x ([`ShadingFloat::rsqrt`]).
 #[inline(always)]
 #[must_use]
 pub fn inversesqrt<F: ShadingFloat>(x: F) -> F {
-    F::c(1.0) / x.sqrt()
+    x.rsqrt()
 }
 
 /// RSL `log(x, base)`.

@@ -206,10 +206,11 @@ impl<'c> Cg<'c, '_> {
             let run_bb = self.cx.append_basic_block(func, "light.body");
             self.b.build_conditional_branch(self.any(mask), run_bb, latch).expect("br");
             self.b.position_at_end(run_bb);
-            let update = |cg: &Self, slots: [PointerValue<'c>; 3], add: &[S<'c>]| {
-                for (slot, &x) in slots.iter().zip(add) {
+            // `sum = Cl·w + sum` per component, fused (`Color::mul_add`), for the lanes in `mask`.
+            let update = |cg: &Self, slots: [PointerValue<'c>; 3], cl: &[S<'c>], w: S<'c>| {
+                for (slot, &c) in slots.iter().zip(cl) {
                     let old = S { r: Repr::V, v: cg.b.build_load(*slot, "").expect("load"), d: None };
-                    let new = cg.sel(mask, cg.add(old, x), old);
+                    let new = cg.sel(mask, cg.fma(c, w, old), old);
                     cg.b.build_store(*slot, cg.to(new, Repr::V).v).expect("store");
                 }
             };
@@ -218,20 +219,18 @@ impl<'c> Cg<'c, '_> {
             if let Some(diff) = diff {
                 // `cl · max(L̂·N, 0)`, as `diffuse` and `diffuse_specular` add it.
                 let w = self.lib_max(ndl, zero);
-                let add: Vec<S<'c>> = cl.iter().map(|&c| self.mul(c, w)).collect();
-                update(self, diff, &add);
+                update(self, diff, &cl, w);
             }
             if let (Some(spec), Some(exponent)) = (spec, exponent) {
                 // `diffuse_specular`'s highlight: `n·normalize(h)` without forming it.
                 let h: Vec<S<'c>> = (0..3).map(|k| self.add(lu[k], view[k])).collect();
                 let h2 = self.dot(&h, &h);
-                let inv = self.div(self.fc(1.0), self.sqrt(h2));
+                let inv = self.rsqrt(h2);
                 let k = self.sel(self.cmp(FloatPredicate::OGT, h2, zero), inv, zero);
                 let ndh = self.lib_max(self.mul(self.dot(&normal, &h), k), zero);
                 let s = self.pow_of_cosine(ndh, exponent);
                 let w = self.sel(self.cmp(FloatPredicate::OGT, ndl, zero), s, self.to(zero, s.r));
-                let add: Vec<S<'c>> = cl.iter().map(|&c| self.mul(c, w)).collect();
-                update(self, spec, &add);
+                update(self, spec, &cl, w);
             }
             self.b.build_unconditional_branch(latch).expect("br");
         } else {
@@ -288,16 +287,9 @@ impl<'c> Cg<'c, '_> {
         self.sel(skip, self.to(zero, p.r), p)
     }
 
-    /// `a.max(b)` as the float type's library computes it: `f32::max` (LLVM's `maxnum`) for
-    /// `f32`, the select of `anysl-simd` for vectors.
+    /// `a.max(b)` as the float type's library computes it ([`Cg::minmax`]).
     fn lib_max(&self, a: S<'c>, b: S<'c>) -> S<'c> {
-        if self.t.lanes == 1 {
-            return self.minmax(a, b, true);
-        }
-        let (a, b) = self.unify(a, b);
-        let nan = self.cmp(FloatPredicate::UNO, a, a);
-        let lt = self.cmp(FloatPredicate::OLT, a, b);
-        self.sel(nan, b, self.sel(lt, b, a))
+        self.minmax(a, b, true)
     }
 
     /// `ConeTest::new(n, π/2)`: `(c²·|n|², narrow, all)` with `c = cos(π/2)` as the float

@@ -143,6 +143,24 @@ impl<'c> Cg<'c, '_> {
     fn kintr(&self, name: &str, a: V<'c>) -> V<'c> {
         self.unary_intr(name, a.into()).into_vector_value()
     }
+    /// Polynomial `c[0] + c[1]·x + …` by Estrin's scheme (the library's `estrin`: pairs with
+    /// `x`, then pairs of pairs with `x²`, `x⁴`, …).
+    fn kestrin(&self, x: V<'c>, c: &[f32]) -> V<'c> {
+        let mut v: Vec<V<'c>> = c
+            .chunks(2)
+            .map(|p| if p.len() == 2 { self.kfma(x, self.kf(p[1]), self.kf(p[0])) } else { self.kf(p[0]) })
+            .collect();
+        let mut p = x;
+        while v.len() > 1 {
+            p = self.kmul(p, p);
+            v = v.chunks(2).map(|q| if q.len() == 2 { self.kfma(p, q[1], q[0]) } else { q[0] }).collect();
+        }
+        v[0]
+    }
+    /// `c[0] + x·estrin(x, c[1..])` (the library's `estrin1`).
+    fn kestrin1(&self, x: V<'c>, c: &[f32]) -> V<'c> {
+        self.kfma(x, self.kestrin(x, &c[1..]), self.kf(c[0]))
+    }
     /// Polynomial `c[0] + c[1]·x + …` by Horner's rule with FMA (the library's `horner`).
     fn khorner(&self, x: V<'c>, c: &[f32]) -> V<'c> {
         self.horner_of(x, c.iter().map(|&v| self.kf(v)).collect())
@@ -243,7 +261,7 @@ impl<'c> Cg<'c, '_> {
         let l = self.ksel(in_range, lo, self.kf(0.0));
         let n = self.kintr("llvm.roundeven", h);
         let r = self.kadd(self.ksub(h, n), l);
-        let p = self.kadd(self.kmul(r, self.khorner(r, &kc::EXP2_Q)), self.kf(1.0));
+        let p = self.kfma(r, self.kestrin(r, &kc::EXP2_Q), self.kf(1.0));
         let ni = self.kto_int(n);
         let n1 = self.kint('>', ni, self.ki(1));
         let n2 = self.kint('-', ni, n1);
@@ -309,7 +327,7 @@ impl<'c> Cg<'c, '_> {
         let m = self.kfrom_bits(self.kint('-', u, self.kint('<', ei, self.ki(23))));
         let e = self.ksub(self.kfrom_int(ei), self.ksel(tiny, self.kf(24.0), self.kf(0.0)));
         let f = self.ksub(m, self.kf(1.0));
-        let l = self.kmul(f, self.khorner(f, &kc::LOG2_Q));
+        let l = self.kmul(f, self.kestrin1(f, &kc::LOG2_Q));
         let s = self.kadd(e, l);
         let sl = self.kadd(self.ksub(e, s), l);
         // log2 of 0 and inf
@@ -323,8 +341,43 @@ impl<'c> Cg<'c, '_> {
         self.k_exp2_dd(th, tl)
     }
 
-    /// `x^y` (C99 `pow`), as the library computes it.
+    /// `x^y` (C99 `pow`), as the library computes it: its fast path (every lane a positive
+    /// normal base, or `+0` under a positive exponent, with a normal result: one-step
+    /// scaling, no fix-ups), else the general form on a branch taken when some lane needs it.
     fn k_pow(&self, x: V<'c>, y: V<'c>) -> V<'c> {
+        use FloatPredicate::{OLE, OLT};
+        let zero = self.kf(0.0);
+        let is_pz = self.b.build_int_compare(IntPredicate::EQ, self.kbits(x), self.ki(0), "").expect("icmp");
+        let plus_zero = self.kand(is_pz, self.kcmp(OLT, zero, y));
+        let xb = self.ksel(plus_zero, self.kf(1.0), x);
+        // log2_split without the subnormal scaling
+        let u = self.kbits(xb);
+        let ei = self.kint('>', self.kint('-', u, self.ki(kc::SQRT_HALF_BITS)), self.ki(23));
+        let m = self.kfrom_bits(self.kint('-', u, self.kint('<', ei, self.ki(23))));
+        let e = self.kfrom_int(ei);
+        let f = self.ksub(m, self.kf(1.0));
+        let l = self.kmul(f, self.kestrin1(f, &kc::LOG2_Q));
+        let lh = self.kadd(e, l);
+        let ll = self.kadd(self.ksub(e, lh), l);
+        let th = self.kmul(y, lh);
+        let tl = self.kfma(y, ll, self.kfma(y, lh, self.kneg(th)));
+        let ok = self.kand(
+            self.kand(self.kcmp(OLE, self.kf(f32::MIN_POSITIVE), xb), self.kcmp(OLT, xb, self.kf(f32::INFINITY))),
+            self.kcmp(OLE, self.k_abs(th), self.kf(125.0)),
+        );
+        let n = self.kintr("llvm.roundeven", th);
+        let r = self.kadd(self.ksub(th, n), tl);
+        let p = self.kfma(r, self.kestrin(r, &kc::EXP2_Q), self.kf(1.0));
+        // |n| <= 125 wherever the result is used: a plain conversion.
+        let ni = self.b.build_float_to_signed_int(n, self.kit(), "").expect("fptosi");
+        let fast = self.ksel(plus_zero, zero, self.kmul(p, self.k_pow2i(ni)));
+        let vs = |v: V<'c>| S { r: Repr::V, v: v.into(), d: None };
+        let not_ok = super::M { uni: false, v: self.knot(ok).into() };
+        self.when_any(not_ok, vec![vs(fast)], |cg, _| vec![vs(cg.k_pow_general(x, y))])[0].v.into_vector_value()
+    }
+
+    /// `x^y` for any lanes (the library's `pow_general`).
+    fn k_pow_general(&self, x: V<'c>, y: V<'c>) -> V<'c> {
         use FloatPredicate::{OEQ, OLT};
         let ax = self.k_abs(x);
         let a = self.k_pow_mag(ax, y);
