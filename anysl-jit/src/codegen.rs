@@ -2067,6 +2067,26 @@ impl<'c, 'm> Cg<'c, 'm> {
         self.slots = saved_slots;
         self.st = saved_st;
         self.b.position_at_end(caller_bb);
+        // Lights described as data (no category to select on: data carries none) run in a
+        // loop compiled here, the body inline; the renderer's loop otherwise.
+        let (host_bb, join_bb) = if category.is_none() && !self.lights_by_renderer {
+            let (lights, n_lights) = self.light_data_ptr();
+            let data_bb = self.cx.append_basic_block(self.cur_fn(), "illuminance.data");
+            let host_bb = self.cx.append_basic_block(self.cur_fn(), "illuminance.host");
+            let join_bb = self.cx.append_basic_block(self.cur_fn(), "illuminance.join");
+            let none = self.b.build_is_null(lights, "").expect("isnull");
+            self.b.build_conditional_branch(none, host_bb, data_bb).expect("br");
+            self.b.position_at_end(data_bb);
+            let saved_vals = self.vals.clone();
+            self.illuminance_over_data(position, cone, body, lights, n_lights)?;
+            self.vals = saved_vals;
+            self.b.build_unconditional_branch(join_bb).expect("br");
+            self.b.position_at_end(host_bb);
+            (Some(host_bb), Some(join_bb))
+        } else {
+            (None, None)
+        };
+        let _ = host_bb;
         // The host call.
         let pos = self.nums(position)?;
         let mut args = pos.clone();
@@ -2118,6 +2138,10 @@ impl<'c, 'm> Cg<'c, 'm> {
                 "",
             )
             .expect("call");
+        if let Some(join) = join_bb {
+            self.b.build_unconditional_branch(join).expect("br");
+            self.b.position_at_end(join);
+        }
         Ok(())
     }
 

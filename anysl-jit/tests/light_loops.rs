@@ -139,6 +139,41 @@ surface loops(float Ks = 0.5; float roughness = 0.2;)
 }
 "#;
     v.push(("loops".into(), JitShader::from_source("loops.sl", src, &[], JitOptions::default()).unwrap()));
+    // `illuminance` with bodies of their own, compiled inline over the lights as data: the
+    // shared workload's shaders, and a cone, `break`, `continue`, a light count and a loop
+    // that selects on a category (that one always asks the context).
+    for n in ["plastic", "checker", "wood", "granite"] {
+        let path = rsl_dir().join("workload").join(format!("{n}.sl"));
+        v.push((format!("workload {n}"), JitShader::from_file(&path, &[], JitOptions::default()).unwrap()));
+    }
+    let src = r#"
+surface bodies(float cutoff = 0.4;)
+{
+    normal Nf = faceforward(normalize(N), I);
+    color c = 0;
+    float count = 0;
+    illuminance (P, Nf, PI / 3) {
+        float k = normalize(L) . Nf;
+        if (k < cutoff * s)
+            continue;
+        c += Cl * k;
+        count += 1;
+        if (count > 1 + 2 * t)
+            break;
+    }
+    color wide = 0;
+    illuminance (P, -Nf, 0.75 * PI) {
+        wide += Cl * length(L);
+    }
+    color cat = 0;
+    illuminance ("-nothing", P) {
+        cat += Cl;
+    }
+    Ci = c + 0.5 * wide + count * color(0.01, 0.02, 0.03) + 0.25 * cat;
+    Oi = 1;
+}
+"#;
+    v.push(("bodies".into(), JitShader::from_source("bodies.sl", src, &[], JitOptions::default()).unwrap()));
     v
 }
 
@@ -148,8 +183,9 @@ fn check<F: ShadingFloat>(name: &str, jit: &JitShader, set: &PointSet, lights_na
     let differ = inline.iter().zip(&host).filter(|(a, b)| a != b).count();
     assert_eq!(differ, 0, "{name} {} with {lights_name}: {differ} outputs differ from the context's loops", F::NAME);
     let described = PointContext::<F, Light>::new(set.globals::<F>(0), lights).lights_as_data().is_some();
-    if described && name != "glass" {
-        // Glass's `trace` is not a light loop; everything else runs inline.
+    if described && name != "glass" && name != "bodies" {
+        // Glass's `trace` is not a light loop, and `bodies` selects on a category; everything
+        // else runs inline.
         assert_eq!(calls, 0, "{name} {} with {lights_name}: {calls} calls of the context's loops", F::NAME);
     }
 }

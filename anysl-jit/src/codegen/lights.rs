@@ -55,8 +55,8 @@ impl<'c> Cg<'c, '_> {
             let p = cg.b.build_pointer_cast(p, t.ptr_type(AddressSpace::default()), "").expect("cast");
             cg.b.build_load(p, "").expect("load")
         };
-        let lights = word(self, rt::HOST_CTX_LIGHTS, self.i8p().into()).into_pointer_value();
-        let n = word(self, rt::HOST_CTX_N_LIGHTS, self.cx.i64_type().into()).into_int_value();
+        let _ = word;
+        let (lights, n) = self.light_data_ptr();
         let inline_bb = self.cx.append_basic_block(func, "lights.data");
         let host_bb = self.cx.append_basic_block(func, "lights.host");
         let join = self.cx.append_basic_block(func, "lights.join");
@@ -81,6 +81,153 @@ impl<'c> Cg<'c, '_> {
                 S { r: Repr::V, v: phi.as_basic_value(), d: None }
             })
             .collect()
+    }
+
+    /// The context's lights as data: the pointer and count the compiled code finds in
+    /// [`crate::rt::HostCtx`] (null when the renderer's loops must be called).
+    pub(super) fn light_data_ptr(&self) -> (PointerValue<'c>, IntValue<'c>) {
+        let ctx = self.st().ctx.into_pointer_value();
+        let word = |cg: &Self, off: u64, t: inkwell::types::BasicTypeEnum<'c>| {
+            let p = unsafe { cg.b.build_gep(ctx, &[cg.cx.i64_type().const_int(off, false)], "") }.expect("gep");
+            let p = cg.b.build_pointer_cast(p, t.ptr_type(AddressSpace::default()), "").expect("cast");
+            cg.b.build_load(p, "").expect("load")
+        };
+        let lights = word(self, rt::HOST_CTX_LIGHTS, self.i8p().into()).into_pointer_value();
+        let n = word(self, rt::HOST_CTX_N_LIGHTS, self.cx.i64_type().into()).into_int_value();
+        (lights, n)
+    }
+
+    /// `illuminance(position [, axis, angle]) { body }` over the `n` lights at `lights`, the
+    /// body compiled inline: [`anysl_core::run_illuminance`] with each light evaluated as
+    /// [`LightData::light`] does — ambient lights skipped, a point light's `L = position - pos`
+    /// with its falloff, a distant light's `L = pos`, `L` reversed to point at the light, the
+    /// lanes in the cone (`ConeTest`), nothing for no lane, no shadowing — so the body sees
+    /// the `L` and `Cl` the renderer's loop would hand it. `break`/`continue` in the body
+    /// end the loop or the light for their lanes, as in the body function the renderer calls.
+    pub(super) fn illuminance_over_data(
+        &mut self,
+        position: anysl_rsl::ir::Value,
+        cone: Option<(anysl_rsl::ir::Value, anysl_rsl::ir::Value)>,
+        body: &anysl_rsl::ir::Block,
+        lights: PointerValue<'c>,
+        n: IntValue<'c>,
+    ) -> super::R<()> {
+        let func = self.cur_fn();
+        let i64t = self.cx.i64_type();
+        let ps = self.nums(position)?;
+        // `ConeTest::new(axis, angle)`, once for all lights.
+        let cone = match cone {
+            Some((axis, angle)) => {
+                let axis = self.nums(axis)?;
+                let angle = self.nums(angle)?[0];
+                let pi = self.fc(core::f64::consts::PI);
+                let a = self.minmax(angle, pi, false);
+                let a = if self.t.lanes > 1 { self.to(a, Repr::V) } else { a };
+                let c = self.rt_call(RtKind::Un, rt::un::COS, &[a], 1, false)[0];
+                let c2a2 = self.mul(self.mul(c, c), self.dot(&axis, &axis));
+                let narrow = self.cmp(FloatPredicate::OGE, c, self.fc(0.0));
+                let all = self.cmp(FloatPredicate::OGE, angle, pi);
+                Some((axis, c2a2, narrow, all))
+            }
+            None => None,
+        };
+        let outer = self.st().mask;
+        let m_outer = self.load_mask(outer);
+        let brk = self.new_mask(self.no_lanes());
+        let cont = self.new_mask(self.no_lanes());
+        let ret = self.new_mask(self.no_lanes());
+        let lmask = self.new_mask(self.no_lanes());
+
+        let pre = self.b.get_insert_block().expect("positioned");
+        let head = self.cx.append_basic_block(func, "illum.head");
+        let rec_bb = self.cx.append_basic_block(func, "illum.light");
+        let latch = self.cx.append_basic_block(func, "illum.next");
+        let exit = self.cx.append_basic_block(func, "illum.exit");
+        self.b.build_unconditional_branch(head).expect("br");
+        self.b.position_at_end(head);
+        let i = self.b.build_phi(i64t, "").expect("phi");
+        let iv = i.as_basic_value().into_int_value();
+        let more = self.b.build_int_compare(IntPredicate::ULT, iv, n, "").expect("icmp");
+        self.b.build_conditional_branch(more, rec_bb, exit).expect("br");
+
+        self.b.position_at_end(rec_bb);
+        let size = i64t.const_int(size_of::<LightData>() as u64, false);
+        let at = self.b.build_int_mul(iv, size, "").expect("mul");
+        let rec = unsafe { self.b.build_gep(lights, &[at], "") }.expect("gep");
+        let field = |cg: &Self, off: usize, t: inkwell::types::BasicTypeEnum<'c>| {
+            let q = unsafe { cg.b.build_gep(rec, &[i64t.const_int(off as u64, false)], "") }.expect("gep");
+            let q = cg.b.build_pointer_cast(q, t.ptr_type(AddressSpace::default()), "").expect("cast");
+            cg.b.build_load(q, "").expect("load")
+        };
+        let triple = |cg: &Self, off: usize| -> Vec<S<'c>> {
+            (0..3).map(|k| S { r: Repr::U, v: field(cg, off + 4 * k, cg.f32t.into()), d: None }).collect()
+        };
+        let kind = field(self, offset_of!(LightData, kind), self.cx.i32_type().into()).into_int_value();
+        let kval = |k: LightKind| self.cx.i32_type().const_int(k as u64, false);
+        let ambient = self.b.build_int_compare(IntPredicate::EQ, kind, kval(LightKind::Ambient), "").expect("icmp");
+        let lit_bb = self.cx.append_basic_block(func, "illum.directed");
+        self.b.build_conditional_branch(ambient, latch, lit_bb).expect("br");
+        self.b.position_at_end(lit_bb);
+        let pos = triple(self, offset_of!(LightData, pos));
+        let cl_c = triple(self, offset_of!(LightData, cl));
+        let point = self.b.build_int_compare(IntPredicate::EQ, kind, kval(LightKind::Point), "").expect("icmp");
+        let point = M { uni: true, v: point.into() };
+        let l: Vec<S<'c>> = (0..3).map(|k| self.sel(point, self.sub(ps[k], pos[k]), pos[k])).collect();
+        // A point light with the inverse-square law divides by `L·L`.
+        let falloff = field(self, offset_of!(LightData, falloff), self.cx.i32_type().into()).into_int_value();
+        let sq = self.cx.i32_type().const_int(Falloff::InverseSquare as u64, false);
+        let sq = self.b.build_int_compare(IntPredicate::EQ, falloff, sq, "").expect("icmp");
+        let sq = M { uni: true, v: self.b.build_and(point.v.into_int_value(), sq, "").expect("and").into() };
+        let d2 = self.dot(&l, &l);
+        let cl: Vec<S<'c>> = cl_c.iter().map(|&c| self.sel(sq, self.div(c, d2), c)).collect();
+        let to_light: Vec<S<'c>> = l.iter().map(|&x| self.neg(x)).collect();
+        let mut m = self.mand(m_outer, self.mnot(self.load_mask(brk)));
+        if let Some((axis, c2a2, narrow, all)) = &cone {
+            // `ConeTest::contains`.
+            let d = self.dot(&to_light, axis);
+            let front = self.cmp(FloatPredicate::OGE, d, self.fc(0.0));
+            let dd = self.mul(d, d);
+            let rhs = self.mul(*c2a2, self.dot(&to_light, &to_light));
+            let wide = self.mnot(*narrow);
+            let inside = self.mor(
+                self.mand(front, self.mor(self.cmp(FloatPredicate::OGE, dd, rhs), wide)),
+                self.mand(wide, self.cmp(FloatPredicate::OLE, dd, rhs)),
+            );
+            m = self.mand(m, self.mor(inside, *all));
+        }
+        self.store_mask(lmask, m);
+        self.store_mask(cont, self.no_lanes());
+        self.store_mask(ret, self.no_lanes());
+        let run_bb = self.cx.append_basic_block(func, "illum.body");
+        self.b.build_conditional_branch(self.any(self.load_mask(lmask)), run_bb, latch).expect("br");
+        self.b.position_at_end(run_bb);
+        for (gi, g) in [Global::L, Global::Cl].into_iter().enumerate() {
+            if let Some(s) = self.func.global_slot(g) {
+                let src = if gi == 0 { &to_light } else { &cl };
+                for (c, &v) in src.iter().enumerate() {
+                    self.store_comp(s, c, v, None);
+                }
+            }
+        }
+        let saved = self.st().clone();
+        {
+            let st = self.st.as_mut().expect("st");
+            st.mask = lmask;
+            st.loops = vec![(brk, cont)];
+            st.rets = vec![ret];
+        }
+        let saved_vals = self.vals.clone();
+        self.block(body)?;
+        self.vals = saved_vals;
+        self.st = Some(saved);
+        self.b.build_unconditional_branch(latch).expect("br");
+
+        self.b.position_at_end(latch);
+        let next = self.b.build_int_add(iv, i64t.const_int(1, false), "").expect("add");
+        self.b.build_unconditional_branch(head).expect("br");
+        i.add_incoming(&[(&i64t.const_zero(), pre), (&next, latch)]);
+        self.b.position_at_end(exit);
+        Ok(())
     }
 
     /// The loop over the `n` lights at `lights`: the sums `sums` for the call arguments
