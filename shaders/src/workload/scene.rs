@@ -203,22 +203,12 @@ impl WorkloadScene {
     #[inline(always)]
     #[must_use]
     pub fn globals<F: ShadingFloat>(&self, i: usize) -> Globals<F> {
-        let seeded = |v: Vec3<F>, dx: usize, dy: usize| {
-            if F::HAS_DERIVS {
-                let (a, b) = (self.load3::<F>(dx, i), self.load3::<F>(dy, i));
-                Vec3::new(v.x.with_derivs(a.x, b.x), v.y.with_derivs(a.y, b.y), v.z.with_derivs(a.z, b.z))
-            } else {
-                v
-            }
-        };
-        let p = seeded(self.load3(P, i), DPDX, DPDY);
-        let n = seeded(self.load3(N, i), DNDX, DNDY);
         let zero = F::c(0.0);
-        Globals {
-            P: p,
-            N: n,
-            Ng: n,
-            I: -self.load3::<F>(V, i),
+        let mut g = Globals {
+            P: Vec3::zero(),
+            N: Vec3::zero(),
+            Ng: Vec3::zero(),
+            I: Vec3::zero(),
             E: Vec3::from_array(EYE),
             s: zero,
             t: zero,
@@ -230,7 +220,31 @@ impl WorkloadScene {
             dPdv: Vec3::zero(),
             Cs: Color::c(1.0, 1.0, 1.0),
             Os: Color::c(1.0, 1.0, 1.0),
-        }
+        };
+        self.set_points(&mut g, i);
+        g
+    }
+
+    /// Writes the globals that differ from packet to packet — `P`, `N` (= `Ng`) and `I` of
+    /// points `i .. i + F::LANES`, with their footprints for dual numbers — into `g`; the
+    /// others are the same for every packet ([`WorkloadScene::globals`]). A shading loop keeps
+    /// one context and rewrites only these: a shader behind a call boundary (JIT code reads
+    /// the globals in memory) then costs no rebuilt `Globals` per packet.
+    #[inline(always)]
+    pub fn set_points<F: ShadingFloat>(&self, g: &mut Globals<F>, i: usize) {
+        let seeded = |v: Vec3<F>, dx: usize, dy: usize| {
+            if F::HAS_DERIVS {
+                let (a, b) = (self.load3::<F>(dx, i), self.load3::<F>(dy, i));
+                Vec3::new(v.x.with_derivs(a.x, b.x), v.y.with_derivs(a.y, b.y), v.z.with_derivs(a.z, b.z))
+            } else {
+                v
+            }
+        };
+        let n = seeded(self.load3(N, i), DNDX, DNDY);
+        g.P = seeded(self.load3(P, i), DPDX, DPDY);
+        g.N = n;
+        g.Ng = n;
+        g.I = -self.load3::<F>(V, i);
     }
 
     /// One shading call over points `start .. start + out[0].len()` (a multiple of `F::LANES`)
@@ -278,9 +292,13 @@ impl WorkloadScene {
     ) {
         let [r, g, b] = out;
         let len = self.check_range::<F>(start, [r.len(), g.len(), b.len()]);
+        if len == 0 {
+            return;
+        }
+        let mut ctx = PointContext::new(self.globals::<F>(start), lights);
         let mut k = 0;
         while k < len {
-            let mut ctx = PointContext::new(self.globals::<F>(start + k), lights);
+            self.set_points(&mut ctx.globals, start + k);
             let mut e = Exec::<F>::new();
             let ci = shader.shade(&mut ctx, &mut e).Ci;
             ci.r.store(&mut r[k..]);
