@@ -1855,6 +1855,28 @@ impl<'c, 'm> Cg<'c, 'm> {
         cone: Option<(Value, Value)>,
         body: &Block,
     ) -> R<()> {
+        // Lights described as data (no category to select on: data carries none) run in a
+        // loop compiled here, the body inline; the renderer's loop otherwise, on the other
+        // branch (its environment — the body's variables copied in and out of a block the
+        // renderer's callback reads — is built there only, so the shader's own variables stay
+        // registers).
+        let join_bb = if category.is_none() && !self.lights_by_renderer {
+            let (lights, n_lights) = self.light_data_ptr();
+            let data_bb = self.cx.append_basic_block(self.cur_fn(), "illuminance.data");
+            let host_bb = self.cx.append_basic_block(self.cur_fn(), "illuminance.host");
+            let join_bb = self.cx.append_basic_block(self.cur_fn(), "illuminance.join");
+            let none = self.b.build_is_null(lights, "").expect("isnull");
+            self.b.build_conditional_branch(none, host_bb, data_bb).expect("br");
+            self.b.position_at_end(data_bb);
+            let saved_vals = self.vals.clone();
+            self.illuminance_over_data(position, cone, body, lights, n_lights)?;
+            self.vals = saved_vals;
+            self.b.build_unconditional_branch(join_bb).expect("br");
+            self.b.position_at_end(host_bb);
+            Some(join_bb)
+        } else {
+            None
+        };
         let func = self.func;
         // What the body reads from outside: values defined outside and variables.
         let mut defined = HashSet::new();
@@ -1920,12 +1942,17 @@ impl<'c, 'm> Cg<'c, 'm> {
             }
             free_layout.push((v, val));
         }
+        // The body's variables: copies the callback reads and writes, copied back after the
+        // call (the variables' own storage never escapes, so LLVM keeps them in registers).
+        let mut copies: Vec<(PointerValue<'c>, PointerValue<'c>)> = Vec::new();
         for &s in &used_slots {
-            for (p, d) in &self.slots[s.0 as usize].ptrs {
-                env_ptrs.push(*p);
-                if let Some((x, y)) = d {
-                    env_ptrs.push(*x);
-                    env_ptrs.push(*y);
+            for (p, d) in self.slots[s.0 as usize].ptrs.clone() {
+                for q in std::iter::once(p).chain(d.into_iter().flat_map(|(x, y)| [x, y])) {
+                    let t = self.entry_alloca(q.get_type().get_element_type().try_into().expect("a value type"));
+                    let v = self.b.build_load(q, "").expect("load");
+                    self.b.build_store(t, v).expect("store");
+                    env_ptrs.push(t);
+                    copies.push((q, t));
                 }
             }
         }
@@ -2067,26 +2094,6 @@ impl<'c, 'm> Cg<'c, 'm> {
         self.slots = saved_slots;
         self.st = saved_st;
         self.b.position_at_end(caller_bb);
-        // Lights described as data (no category to select on: data carries none) run in a
-        // loop compiled here, the body inline; the renderer's loop otherwise.
-        let (host_bb, join_bb) = if category.is_none() && !self.lights_by_renderer {
-            let (lights, n_lights) = self.light_data_ptr();
-            let data_bb = self.cx.append_basic_block(self.cur_fn(), "illuminance.data");
-            let host_bb = self.cx.append_basic_block(self.cur_fn(), "illuminance.host");
-            let join_bb = self.cx.append_basic_block(self.cur_fn(), "illuminance.join");
-            let none = self.b.build_is_null(lights, "").expect("isnull");
-            self.b.build_conditional_branch(none, host_bb, data_bb).expect("br");
-            self.b.position_at_end(data_bb);
-            let saved_vals = self.vals.clone();
-            self.illuminance_over_data(position, cone, body, lights, n_lights)?;
-            self.vals = saved_vals;
-            self.b.build_unconditional_branch(join_bb).expect("br");
-            self.b.position_at_end(host_bb);
-            (Some(host_bb), Some(join_bb))
-        } else {
-            (None, None)
-        };
-        let _ = host_bb;
         // The host call.
         let pos = self.nums(position)?;
         let mut args = pos.clone();
@@ -2138,6 +2145,10 @@ impl<'c, 'm> Cg<'c, 'm> {
                 "",
             )
             .expect("call");
+        for (q, t) in copies {
+            let v = self.b.build_load(t, "").expect("load");
+            self.b.build_store(q, v).expect("store");
+        }
         if let Some(join) = join_bb {
             self.b.build_unconditional_branch(join).expect("br");
             self.b.position_at_end(join);

@@ -173,13 +173,44 @@ impl<'c> Cg<'c, '_> {
         let point = self.b.build_int_compare(IntPredicate::EQ, kind, kval(LightKind::Point), "").expect("icmp");
         let point = M { uni: true, v: point.into() };
         let l: Vec<S<'c>> = (0..3).map(|k| self.sel(point, self.sub(ps[k], pos[k]), pos[k])).collect();
-        // A point light with the inverse-square law divides by `L·L`.
+        // A point light with the inverse-square law divides by `L·L` (on a branch: three
+        // divides a light without falloff should not pay).
         let falloff = field(self, offset_of!(LightData, falloff), self.cx.i32_type().into()).into_int_value();
         let sq = self.cx.i32_type().const_int(Falloff::InverseSquare as u64, false);
         let sq = self.b.build_int_compare(IntPredicate::EQ, falloff, sq, "").expect("icmp");
-        let sq = M { uni: true, v: self.b.build_and(point.v.into_int_value(), sq, "").expect("and").into() };
+        let sq = self.b.build_and(point.v.into_int_value(), sq, "").expect("and");
+        // `Cl` in the representation of `L` (as the division gives it), made before the branch.
+        let rep = l.iter().map(|x| x.r).max().unwrap_or(Repr::V);
+        let cl_r: Vec<S<'c>> = cl_c.iter().map(|&c| self.to(c, rep)).collect();
+        let sq_bb = self.cx.append_basic_block(func, "illum.inverse_square");
+        let in_bb = self.cx.append_basic_block(func, "illum.in");
+        let from = self.b.get_insert_block().expect("positioned");
+        self.b.build_conditional_branch(sq, sq_bb, in_bb).expect("br");
+        self.b.position_at_end(sq_bb);
         let d2 = self.dot(&l, &l);
-        let cl: Vec<S<'c>> = cl_c.iter().map(|&c| self.sel(sq, self.div(c, d2), c)).collect();
+        let cl_sq: Vec<S<'c>> = cl_r.iter().map(|&c| self.to(self.div(c, d2), rep)).collect();
+        let sq_end = self.b.get_insert_block().expect("positioned");
+        self.b.build_unconditional_branch(in_bb).expect("br");
+        self.b.position_at_end(in_bb);
+        let cl: Vec<S<'c>> = cl_r
+            .iter()
+            .zip(&cl_sq)
+            .map(|(&c, &q)| {
+                let phi = self.b.build_phi(c.v.get_type(), "").expect("phi");
+                phi.add_incoming(&[(&c.v, from), (&q.v, sq_end)]);
+                let d = match (c.d, q.d) {
+                    (Some((cx, cy)), Some((qx, qy))) => {
+                        let px = self.b.build_phi(cx.get_type(), "").expect("phi");
+                        px.add_incoming(&[(&cx, from), (&qx, sq_end)]);
+                        let py = self.b.build_phi(cy.get_type(), "").expect("phi");
+                        py.add_incoming(&[(&cy, from), (&qy, sq_end)]);
+                        Some((px.as_basic_value(), py.as_basic_value()))
+                    }
+                    _ => None,
+                };
+                S { r: q.r, v: phi.as_basic_value(), d }
+            })
+            .collect();
         let to_light: Vec<S<'c>> = l.iter().map(|&x| self.neg(x)).collect();
         let mut m = self.mand(m_outer, self.mnot(self.load_mask(brk)));
         if let Some((axis, c2a2, narrow, all)) = &cone {
