@@ -309,13 +309,11 @@ impl<F: ShadingFloat> Vec3<F> {
     #[must_use]
     pub fn normalize_signed(self, flip: F::Mask) -> Self {
         let l2 = self.dot(self);
-        let zero = F::c(0.0);
-        // The guard is computed beside the reciprocal square root, off its latency chain:
-        // 1/√0 = inf is replaced by 0 (as is a NaN length).
-        let inv = l2.rsqrt();
-        let k = F::select(l2.gt(zero), inv, zero);
+        let k = l2.rsqrt();
         let unit = self * F::select(flip, -k, k);
-        // Squared lengths with a full-precision normal representation and room to spare.
+        // Squared lengths with a full-precision normal representation and room to spare; the
+        // others — zero-length vectors among them (1/√0 = inf) — take the rare path, which
+        // returns 0 for them. A NaN length is in neither range and stays NaN.
         let (lo, hi) = if F::UNIT_ROUNDOFF > 1e-12 {
             (2f64.powi(-120), 2f64.powi(120))
         } else {

@@ -3209,7 +3209,7 @@ impl<'c> Cg<'c, '_> {
         let iu = self.normalize(i);
         let c = self.minmax(self.abs(self.dot(&iu, n)), one, false);
         let inv_eta = self.div(one, eta);
-        let g2 = self.sub(self.add(self.mul(inv_eta, inv_eta), self.mul(c, c)), one);
+        let g2 = self.add(self.sub(self.mul(inv_eta, inv_eta), one), self.mul(c, c));
         let tir = self.cmp(FloatPredicate::OLT, g2, zero);
         let g = self.sqrt(self.minmax(g2, zero, true));
         let (gpc, gmc) = (self.add(g, c), self.sub(g, c));
@@ -3236,10 +3236,9 @@ impl<'c> Cg<'c, '_> {
     /// `Vec3::normalize` for uniform and varying triples (dual triples use the runtime).
     fn normalize(&self, a: &[S<'c>]) -> Vec<S<'c>> {
         let l2 = self.dot(a, a);
-        let zero = self.fc(0.0);
-        let inv = self.rsqrt(l2);
-        let g = self.cmp(FloatPredicate::OGT, l2, zero);
-        let k = self.sel(g, inv, zero);
+        // Zero lengths (1/√0 = inf) are among the lanes the rare path replaces, as in
+        // anysl-core.
+        let k = self.rsqrt(l2);
         let unit: Vec<S<'c>> = a.iter().map(|&c| self.mul(c, k)).collect();
         let lo = 2f64.powi(-120);
         let hi = 2f64.powi(120);

@@ -182,7 +182,9 @@ pub fn fresnel<F: ShadingFloat>(i: Vec3<F>, n: Vec3<F>, eta: F) -> Fresnel<F> {
     let iu = i.normalize();
     let c = iu.dot(n).abs().min(one);
     let inv_eta = one / eta;
-    let g2 = inv_eta * inv_eta + c * c - one;
+    // (1/η² - 1) first: exactly 0 at η = 1, so that g = √(c²) = c and glass of index 1
+    // reflects nothing (and the small difference keeps its bits elsewhere).
+    let g2 = (inv_eta * inv_eta - one) + c * c;
     let tir = g2.lt(zero);
     let g = g2.max(zero).sqrt();
     let gpc = g + c;
