@@ -4,7 +4,8 @@
 //! median and best of `ROUNDS` calls (default 31), and each row's max abs error.
 //!
 //! `cargo bench -p anysl-jit --bench workload_jit`; `SHADERS=plastic,wood` selects,
-//! `OPT=3` compiles at LLVM's `default<O3>`.
+//! `OPT=3` compiles at LLVM's `default<O3>`; `DUMP_IR=DIR` writes each variant's optimized LLVM IR
+//! to `DIR/<shader>-<variant>.ll`.
 
 use anysl_core::LightData;
 use anysl_jit::{JitOptions, JitShader, Variant};
@@ -26,9 +27,22 @@ fn main() {
         let sh = WorkloadShader::by_name(name).expect("a workload shader");
         let reference = reference::load_reference(sh.name()).expect("reference");
         let opts = JitOptions { opt_level: opt, ..JitOptions::new() };
-        let jit = JitShader::from_source(sh.sl_file_name(), sh.sl_source(), &[], opts).expect("compiles");
+        let jit = JitShader::from_source(sh.sl_file_name(), sh.sl_source(), &[], opts.clone()).expect("compiles");
         for v in [Variant::X8, Variant::X16] {
             jit.variant(v).expect("machine code");
+        }
+        if let Some(dir) = env("DUMP_IR") {
+            // The optimized LLVM IR of each variant, for reading the code a row runs.
+            let m = anysl_rsl::compile_source(sh.sl_file_name(), sh.sl_source(), &Default::default())
+                .expect("compiles")
+                .module;
+            let values: Vec<_> = m.params.iter().map(|p| p.default.clone()).collect();
+            for v in [Variant::X8, Variant::X16] {
+                let c = anysl_jit::compile_with(&m, &values, v, &opts, true).expect("machine code");
+                let path = format!("{dir}/{name}-{v:?}.ll");
+                std::fs::write(&path, c.llvm_ir.as_deref().unwrap_or_default()).expect("writable");
+                eprintln!("wrote {path}");
+            }
         }
         type Run<'a> = Box<dyn Fn(&mut [Vec<f32>; 3]) + 'a>;
         let runs: Vec<(&str, Run)> = vec![

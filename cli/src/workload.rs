@@ -14,7 +14,8 @@
 //! are comparable. `max_abs_err` is taken over the 512×512×3 image (black background) against
 //! the reference array of the shader.
 //!
-//! Systems: the generic anysl shaders instantiated ahead of time (`anysl-f32` … `anysl-dual-f32x8`),
+//! Systems: the generic anysl shaders instantiated ahead of time (`anysl-f32` … `anysl-dual-f32x8`;
+//! `anysl-f32x8` and `anysl-f32x16` shade two packets of that width per loop step, `Pair`),
 //! and their `.sl` twins (`shaders/rsl/workload/`, embedded in `anysl-shaders`) through the
 //! batched interpreter (`anysl-interp`) and, with the `jit` feature, the LLVM JIT
 //! (`anysl-jit-f32`, `-x8`, `-x16`). The `.sl` systems compile from source (parse → check → IR,
@@ -29,12 +30,13 @@ use anysl_rsl::ir::Module;
 use anysl_rsl::passes::{optimize, PassOptions};
 use anysl_rsl::{compile_source, CompileOptions};
 use anysl_shaders::workload::{self, reference, WorkloadScene, WorkloadShader};
-use anysl_simd::{F32x16, F32x4, F32x8};
+use anysl_simd::{F32x16, F32x4, F32x8, Pair};
 use indicatif::ProgressBar;
-use rayon::prelude::*;
 use rayon::ThreadPool;
 use serde::Serialize;
 use std::collections::hash_map::{Entry, HashMap};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::{Mutex, PoisonError};
 use std::time::Instant;
 
 /// One row of the table (the JSON schema; the TSV has the first six fields).
@@ -100,25 +102,43 @@ const BLOCKS: usize = 3;
 const CHUNK: usize = 4096;
 
 impl CallEnv<'_> {
-    /// Worker threads of a call.
+    /// Threads of a call: the calling one and the pool's workers.
     fn threads(&self) -> usize {
-        self.pool.map_or(1, ThreadPool::current_num_threads)
+        self.pool.map_or(1, |p| p.current_num_threads() + 1)
     }
 
     /// Runs `shade(start, out)` over `out` — on the calling thread in one piece, or split into
-    /// [`CHUNK`]-point work items on the pool.
+    /// [`CHUNK`]-point work items that the calling thread and the pool's workers claim in
+    /// order. The caller shades too instead of sleeping while the pool works: one thread is
+    /// woken per call, not two, which on a call of a fraction of a millisecond is a visible
+    /// part of the two-thread time.
     fn for_chunks(&self, out: &mut [Vec<f32>; 3], shade: impl Fn(usize, [&mut [f32]; 3]) + Sync) {
         let [r, g, b] = out;
-        match self.pool {
-            None => shade(0, [r, g, b]),
-            Some(pool) => pool.install(|| {
-                r.par_chunks_mut(CHUNK)
-                    .zip(g.par_chunks_mut(CHUNK))
-                    .zip(b.par_chunks_mut(CHUNK))
-                    .enumerate()
-                    .for_each(|(k, ((r, g), b))| shade(k * CHUNK, [r, g, b]));
-            }),
-        }
+        let Some(pool) = self.pool else {
+            return shade(0, [r, g, b]);
+        };
+        type Item<'o> = Mutex<Option<(usize, [&'o mut [f32]; 3])>>;
+        let items: Vec<Item<'_>> = r
+            .chunks_mut(CHUNK)
+            .zip(g.chunks_mut(CHUNK))
+            .zip(b.chunks_mut(CHUNK))
+            .enumerate()
+            .map(|(k, ((r, g), b))| Mutex::new(Some((k * CHUNK, [r, g, b]))))
+            .collect();
+        let next = AtomicUsize::new(0);
+        let work = || {
+            while let Some(item) = items.get(next.fetch_add(1, Ordering::Relaxed)) {
+                if let Some((start, out)) = item.lock().unwrap_or_else(PoisonError::into_inner).take() {
+                    shade(start, out);
+                }
+            }
+        };
+        pool.in_place_scope(|s| {
+            for _ in 0..pool.current_num_threads() {
+                s.spawn(|_| work());
+            }
+            work();
+        });
     }
 }
 
@@ -262,8 +282,11 @@ pub fn systems() -> Vec<Box<dyn System>> {
     let mut v: Vec<Box<dyn System>> = vec![
         generic::<f32>("anysl-f32"),
         generic::<F32x4>("anysl-f32x4"),
-        generic::<F32x8>("anysl-f32x8"),
-        generic::<F32x16>("anysl-f32x16"),
+        // Two packets per step of the loop (`Pair`): 8- and 16-lane instructions, with two
+        // independent dependency chains in flight, so the long sqrt → pow chains of the light
+        // loop overlap (docs/benchmarks.md).
+        generic::<Pair<F32x8>>("anysl-f32x8"),
+        generic::<Pair<F32x16>>("anysl-f32x16"),
         generic::<Dual<F32x8>>("anysl-dual-f32x8"),
         Box::new(Interp::default()),
     ];
@@ -317,8 +340,9 @@ pub fn run(opts: &WorkloadOpts, progress: &ProgressBar) -> Result<Vec<WorkloadRo
     for &threads in &opts.threads {
         let pool = if threads > 1 {
             Some(
+                // The calling thread is the other one (`CallEnv::for_chunks`).
                 rayon::ThreadPoolBuilder::new()
-                    .num_threads(threads)
+                    .num_threads(threads - 1)
                     .build()
                     .map_err(|e| format!("cannot start {threads} threads: {e}"))?,
             )

@@ -171,20 +171,6 @@ impl WorkloadScene {
         core::array::from_fn(|k| self.f64s[k].as_slice())
     }
 
-    #[inline(always)]
-    fn load3<F: ShadingFloat>(&self, k: usize, i: usize) -> Vec3<F> {
-        // The f64 inputs for f64-based instantiations (§2: the setup is f64, rounded to the
-        // shading precision); the constant test is folded at compile time.
-        let c = |k: usize| {
-            if F::UNIT_ROUNDOFF < 1e-10 && k < F64_FIELDS {
-                F::from_lanes(&self.f64s[k][i..i + F::LANES])
-            } else {
-                F::load(self.f32_lanes::<F>(k, i))
-            }
-        };
-        Vec3::new(c(k), c(k + 1), c(k + 2))
-    }
-
     /// Points `i .. i + F::LANES` of f32 field `k`: one range check for the packet instead of
     /// one per field (every field has [`WorkloadScene::padded_len`] points).
     ///
@@ -232,19 +218,32 @@ impl WorkloadScene {
     /// the globals in memory) then costs no rebuilt `Globals` per packet.
     #[inline(always)]
     pub fn set_points<F: ShadingFloat>(&self, g: &mut Globals<F>, i: usize) {
-        let seeded = |v: Vec3<F>, dx: usize, dy: usize| {
+        // Component by component, each lane vector loaded straight into its global: a `Vec3`
+        // built first and assigned whole goes through a stack temporary that is copied with
+        // moves wider than the stores that made it (a 64-byte load from two 32-byte stores at
+        // 8 lanes), which stalls store forwarding on every packet of a shader that reads the
+        // globals in memory (JIT code).
+        let comp = |k: usize| {
+            if F::UNIT_ROUNDOFF < 1e-10 && k < F64_FIELDS {
+                F::from_lanes(&self.f64s[k][i..i + F::LANES])
+            } else {
+                F::load(self.f32_lanes::<F>(k, i))
+            }
+        };
+        let seeded = |k: usize, dx: usize, dy: usize| {
+            let v = comp(k);
             if F::HAS_DERIVS {
-                let (a, b) = (self.load3::<F>(dx, i), self.load3::<F>(dy, i));
-                Vec3::new(v.x.with_derivs(a.x, b.x), v.y.with_derivs(a.y, b.y), v.z.with_derivs(a.z, b.z))
+                v.with_derivs(comp(dx), comp(dy))
             } else {
                 v
             }
         };
-        let n = seeded(self.load3(N, i), DNDX, DNDY);
-        g.P = seeded(self.load3(P, i), DPDX, DPDY);
-        g.N = n;
-        g.Ng = n;
-        g.I = -self.load3::<F>(V, i);
+        let p = |c: usize| seeded(P + c, DPDX + c, DPDY + c);
+        let n = |c: usize| seeded(N + c, DNDX + c, DNDY + c);
+        (g.P.x, g.P.y, g.P.z) = (p(0), p(1), p(2));
+        (g.N.x, g.N.y, g.N.z) = (n(0), n(1), n(2));
+        (g.Ng.x, g.Ng.y, g.Ng.z) = (g.N.x, g.N.y, g.N.z);
+        (g.I.x, g.I.y, g.I.z) = (-comp(V), -comp(V + 1), -comp(V + 2));
     }
 
     /// One shading call over points `start .. start + out[0].len()` (a multiple of `F::LANES`)
