@@ -98,8 +98,9 @@ pub trait System {
 /// Turns each system takes per shader and thread count (see the module docs).
 const BLOCKS: usize = 3;
 
-/// Points per parallel work item (a multiple of every SIMD width).
-const CHUNK: usize = 4096;
+/// Points per parallel work item (a multiple of every SIMD width and batch): small enough that
+/// the two threads finish a call within a few microseconds of each other.
+const CHUNK: usize = 1024;
 
 impl CallEnv<'_> {
     /// Threads of a call: the calling one and the pool's workers.
