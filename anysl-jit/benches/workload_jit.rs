@@ -9,9 +9,9 @@
 
 use anysl_core::LightData;
 use anysl_jit::{JitOptions, JitShader, Variant};
-use anysl_shaders::workload::{self, reference, WorkloadScene, WorkloadShader};
+use anysl_shaders::workload::reference::{self, ProbeRun};
+use anysl_shaders::workload::{self, WorkloadScene, WorkloadShader};
 use anysl_simd::{F32x16, F32x8};
-use std::time::Instant;
 
 fn main() {
     let env = |k: &str| std::env::var(k).ok();
@@ -22,7 +22,6 @@ fn main() {
         .unwrap_or_else(|| WorkloadShader::NAMES.iter().map(|s| s.to_string()).collect());
     let scene = WorkloadScene::new();
     let lights: Vec<LightData> = workload::light_data();
-    let n = scene.padded_len();
     for name in &shaders {
         let sh = WorkloadShader::by_name(name).expect("a workload shader");
         let reference = reference::load_reference(sh.name()).expect("reference");
@@ -44,35 +43,36 @@ fn main() {
                 eprintln!("wrote {path}");
             }
         }
-        type Run<'a> = Box<dyn Fn(&mut [Vec<f32>; 3]) + 'a>;
-        let runs: Vec<(&str, Run)> = vec![
-            ("aot-x8", Box::new(|o| { let [r, g, b] = o; scene.shade::<F32x8, LightData>(&sh, &lights, 0, [r, g, b]) })),
-            ("jit-x8", Box::new(|o| { let [r, g, b] = o; scene.shade_surface::<F32x8, _, LightData>(&jit, &lights, 0, [r, g, b]) })),
-            ("aot-x16", Box::new(|o| { let [r, g, b] = o; scene.shade::<F32x16, LightData>(&sh, &lights, 0, [r, g, b]) })),
-            ("jit-x16", Box::new(|o| { let [r, g, b] = o; scene.shade_surface::<F32x16, _, LightData>(&jit, &lights, 0, [r, g, b]) })),
+        let runs: Vec<ProbeRun<'_>> = vec![
+            (
+                "aot-x8",
+                Box::new(|o| {
+                    let [r, g, b] = o;
+                    scene.shade::<F32x8, LightData>(&sh, &lights, 0, [r, g, b])
+                }),
+            ),
+            (
+                "jit-x8",
+                Box::new(|o| {
+                    let [r, g, b] = o;
+                    scene.shade_surface::<F32x8, _, LightData>(&jit, &lights, 0, [r, g, b])
+                }),
+            ),
+            (
+                "aot-x16",
+                Box::new(|o| {
+                    let [r, g, b] = o;
+                    scene.shade::<F32x16, LightData>(&sh, &lights, 0, [r, g, b])
+                }),
+            ),
+            (
+                "jit-x16",
+                Box::new(|o| {
+                    let [r, g, b] = o;
+                    scene.shade_surface::<F32x16, _, LightData>(&jit, &lights, 0, [r, g, b])
+                }),
+            ),
         ];
-        let mut outs: Vec<[Vec<f32>; 3]> = runs.iter().map(|_| [vec![0.0; n], vec![0.0; n], vec![0.0; n]]).collect();
-        let mut times = vec![Vec::new(); runs.len()];
-        for round in 0..=rounds {
-            for (k, (_, f)) in runs.iter().enumerate() {
-                let t = Instant::now();
-                f(&mut outs[k]);
-                if round > 0 {
-                    times[k].push(t.elapsed().as_secs_f64());
-                }
-            }
-        }
-        for (k, (v, _)) in runs.iter().enumerate() {
-            let mut t = std::mem::take(&mut times[k]);
-            t.sort_by(|a, b| a.partial_cmp(b).expect("finite"));
-            let err = reference::image_error(&scene.to_image(&outs[k]), &reference);
-            let mpts = |secs: f64| scene.n_hit() as f64 / secs / 1e6;
-            println!(
-                "{name:<8} {v:<8} {:8.2} Mpts/s  best {:8.2}  max_abs_err {:.3e}",
-                mpts(t[t.len() / 2]),
-                mpts(t[0]),
-                err.max_abs_err
-            );
-        }
+        reference::probe_rounds(&scene, name, &reference, &runs, rounds);
     }
 }

@@ -7,9 +7,9 @@
 //! `cargo bench -p anysl-shaders --bench workload_probe`; `SHADERS=plastic,wood` selects.
 
 use anysl_core::{LightData, ShadingFloat};
-use anysl_shaders::workload::{self, reference, WorkloadScene, WorkloadShader};
+use anysl_shaders::workload::reference::{self, ProbeRun};
+use anysl_shaders::workload::{self, WorkloadScene, WorkloadShader};
 use anysl_simd::{F32x16, F32x8, Pair};
-use std::time::Instant;
 
 type Run = fn(&WorkloadScene, &WorkloadShader, &[LightData], &mut [Vec<f32>; 3]);
 
@@ -51,33 +51,13 @@ fn main() {
     let runs: Vec<(&str, Run)> = all.into_iter().filter(|(n, _)| variants.iter().any(|v| v == n)).collect();
     let scene = WorkloadScene::new();
     let lights = workload::light_data();
-    let n = scene.padded_len();
     for name in &shaders {
         let sh = WorkloadShader::by_name(name).expect("a workload shader");
         let reference = reference::load_reference(sh.name()).expect("reference");
-        let mut outs: Vec<[Vec<f32>; 3]> = runs.iter().map(|_| [vec![0.0; n], vec![0.0; n], vec![0.0; n]]).collect();
-        let mut times = vec![Vec::new(); runs.len()];
-        for round in 0..=rounds {
-            for (k, (_, f)) in runs.iter().enumerate() {
-                let t = Instant::now();
-                f(&scene, &sh, &lights, &mut outs[k]);
-                if round > 0 {
-                    times[k].push(t.elapsed().as_secs_f64());
-                }
-            }
-        }
-        for (k, (v, _)) in runs.iter().enumerate() {
-            let mut t = std::mem::take(&mut times[k]);
-            t.sort_by(|a, b| a.partial_cmp(b).expect("finite"));
-            let err = reference::image_error(&scene.to_image(&outs[k]), &reference);
-            let mpts = |secs: f64| scene.n_hit() as f64 / secs / 1e6;
-            println!(
-                "{name:<8} {v:<8} {:8.2} Mpts/s  best {:8.2}  max_abs_err {:.3e}",
-                mpts(t[t.len() / 2]),
-                mpts(t[0]),
-                err.max_abs_err
-            );
-        }
+        let (scene, sh, lights) = (&scene, &sh, &lights);
+        let rows: Vec<ProbeRun<'_>> =
+            runs.iter().map(|&(v, f)| -> ProbeRun<'_> { (v, Box::new(move |o| f(scene, sh, lights, o))) }).collect();
+        reference::probe_rounds(scene, name, &reference, &rows, rounds);
     }
 }
 

@@ -4,6 +4,7 @@
 use std::path::{Path, PathBuf};
 
 use super::scene::SIZE;
+use super::WorkloadScene;
 
 /// Where the reference arrays live in this repository (`shaders/assets/workload_ref/`, copied
 /// from `shared/bench/ref/` together with the workload definition).
@@ -144,4 +145,43 @@ pub fn image_error(image: &[f32], reference: &[f32]) -> ImageError {
         over += usize::from(worst > 1e-3);
     }
     ImageError { max_abs_err: max, pixels_over_1e3: over }
+}
+
+/// A timed row of a workload probe: its label and one shading call of every point into the
+/// output arrays (each [`WorkloadScene::padded_len`] long).
+pub type ProbeRun<'a> = (&'a str, Box<dyn Fn(&mut [Vec<f32>; 3]) + 'a>);
+
+/// The timing loop of the workload probes (`cargo bench --bench workload_probe`, `workload_jit`):
+/// one warm-up round, then `rounds` rounds in which every run makes one call in turn (so that
+/// drift on a shared machine reaches every row alike); prints, per run, the median and the best
+/// call as Mpts/s with the max abs error of its image against `reference`.
+///
+/// # Panics
+/// When `rounds` is 0.
+pub fn probe_rounds(scene: &WorkloadScene, shader: &str, reference: &[f32], runs: &[ProbeRun<'_>], rounds: usize) {
+    assert!(rounds > 0, "a probe times at least one round");
+    let n = scene.padded_len();
+    let mut outs: Vec<[Vec<f32>; 3]> = runs.iter().map(|_| [vec![0.0; n], vec![0.0; n], vec![0.0; n]]).collect();
+    let mut times = vec![Vec::new(); runs.len()];
+    for round in 0..=rounds {
+        for (k, (_, f)) in runs.iter().enumerate() {
+            let t = std::time::Instant::now();
+            f(&mut outs[k]);
+            if round > 0 {
+                times[k].push(t.elapsed().as_secs_f64());
+            }
+        }
+    }
+    let mpts = |secs: f64| scene.n_hit() as f64 / secs / 1e6;
+    for (k, (label, _)) in runs.iter().enumerate() {
+        let t = &mut times[k];
+        t.sort_by(f64::total_cmp);
+        let err = image_error(&scene.to_image(&outs[k]), reference);
+        println!(
+            "{shader:<8} {label:<8} {:8.2} Mpts/s  best {:8.2}  max_abs_err {:.3e}",
+            mpts(t[t.len() / 2]),
+            mpts(t[0]),
+            err.max_abs_err
+        );
+    }
 }
