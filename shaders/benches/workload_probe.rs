@@ -29,11 +29,13 @@ fn main() {
     let shaders: Vec<String> = env("SHADERS")
         .map(|s| s.split(',').map(str::to_string).collect())
         .unwrap_or_else(|| WorkloadShader::NAMES.iter().map(|s| s.to_string()).collect());
-    let all: [(&str, Run); 17] = [
+    let all: [(&str, Run); 19] = [
         ("f32x8", run::<F32x8>),
         ("f32x16", run::<F32x16>),
         ("f32x8x2", run::<Pair<F32x8>>),
         ("f32x16x2", run::<Pair<F32x16>>),
+        ("f32x8x4", run::<Pair<Pair<F32x8>>>),
+        ("f32x16x4", run::<Pair<Pair<F32x16>>>),
         ("st-x8", straight::<F32x8>),
         ("st-x16", straight::<F32x16>),
         ("pow-x8", micro_pow::<F32x8>),
