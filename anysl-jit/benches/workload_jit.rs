@@ -7,7 +7,7 @@
 //! `OPT=3` compiles at LLVM's `default<O3>`; `DUMP_IR=DIR` writes each variant's optimized LLVM IR
 //! to `DIR/<shader>-<variant>.ll`.
 
-use anysl_core::LightData;
+use anysl_core::{LightData, ShadingFloat};
 use anysl_jit::{JitOptions, JitShader, Variant};
 use anysl_shaders::workload::reference::{self, ProbeRun};
 use anysl_shaders::workload::{self, WorkloadScene, WorkloadShader};
@@ -43,36 +43,32 @@ fn main() {
                 eprintln!("wrote {path}");
             }
         }
-        let runs: Vec<ProbeRun<'_>> = vec![
+        let (scene, sh, lights, jit) = (&scene, &sh, &lights, &jit);
+        fn aot<'a, F: ShadingFloat>(
+            label: &'a str,
+            s: &'a WorkloadScene,
+            sh: &'a WorkloadShader,
+            l: &'a [LightData],
+        ) -> ProbeRun<'a> {
+            (label, Box::new(move |[r, g, b]: &mut [Vec<f32>; 3]| s.shade::<F, LightData>(sh, l, 0, [r, g, b])))
+        }
+        fn jitted<'a, F: ShadingFloat>(
+            label: &'a str,
+            s: &'a WorkloadScene,
+            j: &'a JitShader,
+            l: &'a [LightData],
+        ) -> ProbeRun<'a> {
             (
-                "aot-x8",
-                Box::new(|o| {
-                    let [r, g, b] = o;
-                    scene.shade::<F32x8, LightData>(&sh, &lights, 0, [r, g, b])
-                }),
-            ),
-            (
-                "jit-x8",
-                Box::new(|o| {
-                    let [r, g, b] = o;
-                    scene.shade_surface::<F32x8, _, LightData>(&jit, &lights, 0, [r, g, b])
-                }),
-            ),
-            (
-                "aot-x16",
-                Box::new(|o| {
-                    let [r, g, b] = o;
-                    scene.shade::<F32x16, LightData>(&sh, &lights, 0, [r, g, b])
-                }),
-            ),
-            (
-                "jit-x16",
-                Box::new(|o| {
-                    let [r, g, b] = o;
-                    scene.shade_surface::<F32x16, _, LightData>(&jit, &lights, 0, [r, g, b])
-                }),
-            ),
+                label,
+                Box::new(move |[r, g, b]: &mut [Vec<f32>; 3]| s.shade_surface::<F, _, LightData>(j, l, 0, [r, g, b])),
+            )
+        }
+        let runs = [
+            aot::<F32x8>("aot-x8", scene, sh, lights),
+            jitted::<F32x8>("jit-x8", scene, jit, lights),
+            aot::<F32x16>("aot-x16", scene, sh, lights),
+            jitted::<F32x16>("jit-x16", scene, jit, lights),
         ];
-        reference::probe_rounds(&scene, name, &reference, &runs, rounds);
+        reference::probe_rounds(scene, name, &reference, &runs, rounds);
     }
 }
