@@ -7,7 +7,7 @@
 //! `OPT=3` compiles at LLVM's `default<O3>`; `DUMP_IR=DIR` writes each variant's optimized LLVM IR
 //! to `DIR/<shader>-<variant>.ll`.
 
-use anysl_core::{LightData, ShadingFloat};
+use anysl_core::LightData;
 use anysl_jit::{JitOptions, JitShader, Variant};
 use anysl_shaders::workload::reference::{self, ProbeRun};
 use anysl_shaders::workload::{self, WorkloadScene, WorkloadShader};
@@ -26,49 +26,26 @@ fn main() {
         let sh = WorkloadShader::by_name(name).expect("a workload shader");
         let reference = reference::load_reference(sh.name()).expect("reference");
         let opts = JitOptions { opt_level: opt, ..JitOptions::new() };
-        let jit = JitShader::from_source(sh.sl_file_name(), sh.sl_source(), &[], opts.clone()).expect("compiles");
+        let jit = JitShader::from_source(sh.sl_file_name(), sh.sl_source(), &[], opts).expect("compiles");
         for v in [Variant::X8, Variant::X16] {
             jit.variant(v).expect("machine code");
         }
         if let Some(dir) = env("DUMP_IR") {
             // The optimized LLVM IR of each variant, for reading the code a row runs.
-            let m = anysl_rsl::compile_source(sh.sl_file_name(), sh.sl_source(), &Default::default())
-                .expect("compiles")
-                .module;
-            let values: Vec<_> = m.params.iter().map(|p| p.default.clone()).collect();
             for v in [Variant::X8, Variant::X16] {
-                let c = anysl_jit::compile_with(&m, &values, v, &opts, true).expect("machine code");
+                let c = anysl_jit::compile_with(&jit.module, &jit.values, v, &jit.opts, true).expect("machine code");
                 let path = format!("{dir}/{name}-{v:?}.ll");
                 std::fs::write(&path, c.llvm_ir.as_deref().unwrap_or_default()).expect("writable");
                 eprintln!("wrote {path}");
             }
         }
-        let (scene, sh, lights, jit) = (&scene, &sh, &lights, &jit);
-        fn aot<'a, F: ShadingFloat>(
-            label: &'a str,
-            s: &'a WorkloadScene,
-            sh: &'a WorkloadShader,
-            l: &'a [LightData],
-        ) -> ProbeRun<'a> {
-            (label, Box::new(move |[r, g, b]: &mut [Vec<f32>; 3]| s.shade::<F, LightData>(sh, l, 0, [r, g, b])))
-        }
-        fn jitted<'a, F: ShadingFloat>(
-            label: &'a str,
-            s: &'a WorkloadScene,
-            j: &'a JitShader,
-            l: &'a [LightData],
-        ) -> ProbeRun<'a> {
-            (
-                label,
-                Box::new(move |[r, g, b]: &mut [Vec<f32>; 3]| s.shade_surface::<F, _, LightData>(j, l, 0, [r, g, b])),
-            )
-        }
-        let runs = [
-            aot::<F32x8>("aot-x8", scene, sh, lights),
-            jitted::<F32x8>("jit-x8", scene, jit, lights),
-            aot::<F32x16>("aot-x16", scene, sh, lights),
-            jitted::<F32x16>("jit-x16", scene, jit, lights),
+        let (sc, sh, l, jit) = (&scene, &sh, &lights, &jit);
+        let runs: [ProbeRun<'_>; 4] = [
+            ("aot-x8", Box::new(|[r, g, b]: &mut _| sc.shade::<F32x8, LightData>(sh, l, 0, [r, g, b]))),
+            ("jit-x8", Box::new(|[r, g, b]: &mut _| sc.shade_surface::<F32x8, _, LightData>(jit, l, 0, [r, g, b]))),
+            ("aot-x16", Box::new(|[r, g, b]: &mut _| sc.shade::<F32x16, LightData>(sh, l, 0, [r, g, b]))),
+            ("jit-x16", Box::new(|[r, g, b]: &mut _| sc.shade_surface::<F32x16, _, LightData>(jit, l, 0, [r, g, b]))),
         ];
-        reference::probe_rounds(scene, name, &reference, &runs, rounds);
+        reference::probe_rounds(sc, name, &reference, &runs, rounds);
     }
 }
