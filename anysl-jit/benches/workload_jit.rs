@@ -4,14 +4,14 @@
 //! median and best of `ROUNDS` calls (default 31), and each row's max abs error.
 //!
 //! `cargo bench -p anysl-jit --bench workload_jit`; `SHADERS=plastic,wood` selects,
-//! `OPT=3` compiles at LLVM's `default<O3>`; `DUMP_IR=DIR` writes each variant's optimized LLVM IR
+//! `ROWS=aot-x8,jit-x8` selects rows, `OPT=3` compiles at LLVM's `default<O3>`; `DUMP_IR=DIR` writes each variant's optimized LLVM IR
 //! to `DIR/<shader>-<variant>.ll`.
 
 use anysl_core::LightData;
 use anysl_jit::{JitOptions, JitShader, Variant};
 use anysl_shaders::workload::reference::{self, ProbeRun};
 use anysl_shaders::workload::{self, WorkloadScene, WorkloadShader};
-use anysl_simd::{F32x16, F32x8};
+use anysl_simd::{F32x16, F32x8, Pair};
 
 fn main() {
     let env = |k: &str| std::env::var(k).ok();
@@ -27,12 +27,13 @@ fn main() {
         let reference = reference::load_reference(sh.name()).expect("reference");
         let opts = JitOptions { opt_level: opt, ..JitOptions::new() };
         let jit = JitShader::from_source(sh.sl_file_name(), sh.sl_source(), &[], opts).expect("compiles");
-        for v in [Variant::X8, Variant::X16] {
+        const VARIANTS: [Variant; 4] = [Variant::X8, Variant::X16, Variant::X8x4, Variant::X16x2];
+        for v in VARIANTS {
             jit.variant(v).expect("machine code");
         }
         if let Some(dir) = env("DUMP_IR") {
             // The optimized LLVM IR of each variant, for reading the code a row runs.
-            for v in [Variant::X8, Variant::X16] {
+            for v in VARIANTS {
                 let c = anysl_jit::compile_with(&jit.module, &jit.values, v, &jit.opts, true).expect("machine code");
                 let path = format!("{dir}/{name}-{v:?}.ll");
                 std::fs::write(&path, c.llvm_ir.as_deref().unwrap_or_default()).expect("writable");
@@ -40,12 +41,23 @@ fn main() {
             }
         }
         let (sc, sh, l, jit) = (&scene, &sh, &lights, &jit);
-        let runs: [ProbeRun<'_>; 4] = [
+        type P8x4 = Pair<Pair<F32x8>>;
+        type P16x2 = Pair<F32x16>;
+        let runs: [ProbeRun<'_>; 8] = [
             ("aot-x8", Box::new(|[r, g, b]: &mut _| sc.shade::<F32x8, LightData>(sh, l, 0, [r, g, b]))),
             ("jit-x8", Box::new(|[r, g, b]: &mut _| sc.shade_surface::<F32x8, _, LightData>(jit, l, 0, [r, g, b]))),
             ("aot-x16", Box::new(|[r, g, b]: &mut _| sc.shade::<F32x16, LightData>(sh, l, 0, [r, g, b]))),
             ("jit-x16", Box::new(|[r, g, b]: &mut _| sc.shade_surface::<F32x16, _, LightData>(jit, l, 0, [r, g, b]))),
+            ("aot-x8x4", Box::new(|[r, g, b]: &mut _| sc.shade::<P8x4, LightData>(sh, l, 0, [r, g, b]))),
+            ("jit-x8x4", Box::new(|[r, g, b]: &mut _| sc.shade_surface::<P8x4, _, LightData>(jit, l, 0, [r, g, b]))),
+            ("aot-x16x2", Box::new(|[r, g, b]: &mut _| sc.shade::<P16x2, LightData>(sh, l, 0, [r, g, b]))),
+            ("jit-x16x2", Box::new(|[r, g, b]: &mut _| sc.shade_surface::<P16x2, _, LightData>(jit, l, 0, [r, g, b]))),
         ];
+        let rows = env("ROWS");
+        let runs: Vec<ProbeRun<'_>> = runs
+            .into_iter()
+            .filter(|(label, _)| rows.as_deref().is_none_or(|r| r.split(',').any(|x| x == *label)))
+            .collect();
         reference::probe_rounds(sc, name, &reference, &runs, rounds);
     }
 }

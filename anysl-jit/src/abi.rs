@@ -7,7 +7,7 @@
 
 use anysl_ad::Dual;
 use anysl_core::ShadingFloat;
-use anysl_simd::{F32x16, F32x4, F32x8};
+use anysl_simd::{F32x16, F32x4, F32x8, Pair, PairMask};
 use core::ffi::c_void;
 
 /// A callback of the runtime library or of the host: `(ctx, mask, inputs, outputs, aux)`.
@@ -176,6 +176,10 @@ pub mod host {
     pub const LEN: usize = 11;
 }
 
+/// Most lanes of any [`JitFloat`] (`Pair<Pair<F32x8>>`, `Pair<F32x16>`): the size of the mask
+/// buffers the host passes.
+pub const MAX_LANES: usize = 32;
+
 /// A float type compiled code can be specialized for: how its values and masks lie in memory.
 ///
 /// # Safety
@@ -297,6 +301,40 @@ where
     #[inline(always)]
     unsafe fn write_mask(m: Self::Mask, p: *mut u32) {
         B::write_mask(m, p);
+    }
+}
+
+/// Several packets shaded together ([`Pair`]): lanes of `.0`, then of `.1`, in one run of
+/// `2 · G::STRIDE` floats — the layout of a vector of all lanes. Dual numbers, whose halves
+/// would each interleave value and derivatives, are not laid out so and are refused when the
+/// impl is instantiated.
+unsafe impl<G: JitFloat> JitFloat for Pair<G> {
+    const STRIDE: usize = {
+        assert!(!G::DUAL, "Pair of dual numbers has no JIT layout");
+        2 * G::STRIDE
+    };
+    const BASE_LANES: usize = {
+        assert!(2 * G::BASE_LANES <= MAX_LANES, "more lanes than the host's mask buffers hold");
+        2 * G::BASE_LANES
+    };
+    const DUAL: bool = false;
+    #[inline(always)]
+    unsafe fn read(p: *const f32) -> Self {
+        Pair(G::read(p), G::read(p.add(G::STRIDE)))
+    }
+    #[inline(always)]
+    unsafe fn write(self, p: *mut f32) {
+        self.0.write(p);
+        self.1.write(p.add(G::STRIDE));
+    }
+    #[inline(always)]
+    unsafe fn read_mask(p: *const u32) -> Self::Mask {
+        PairMask(G::read_mask(p), G::read_mask(p.add(G::BASE_LANES)))
+    }
+    #[inline(always)]
+    unsafe fn write_mask(m: Self::Mask, p: *mut u32) {
+        G::write_mask(m.0, p);
+        G::write_mask(m.1, p.add(G::BASE_LANES));
     }
 }
 

@@ -59,6 +59,9 @@ impl Repr {
 pub struct Target {
     /// Lanes of the varying vectors (1 = scalar).
     pub lanes: u32,
+    /// Lanes of one packet: `lanes` is `native` times the packets shaded per call. Runtime
+    /// library calls and target intrinsics are issued once per packet.
+    pub native: u32,
     /// Varying values whose derivatives are needed are dual numbers.
     pub dual: bool,
     /// Lower each op to a call of a threaded target-library function (else inline).
@@ -625,6 +628,13 @@ impl<'c, 'm> Cg<'c, 'm> {
         if !cfg!(target_arch = "x86_64") {
             return self.arith('/', self.const_like(x, 1.0), self.unary_intr("llvm.sqrt", x));
         }
+        if let BasicValueEnum::VectorValue(v) = x {
+            if v.get_type().get_size() > self.t.native {
+                let parts: Vec<_> =
+                    self.packets_of(v).into_iter().map(|p| self.rsqrt_estimate(p.into()).into_vector_value()).collect();
+                return self.concat(&parts).into();
+            }
+        }
         let v4 = self.f32t.vec_type(4);
         let ones8 = self.cx.i8_type().const_all_ones();
         let est14 = anysl_core::RSQRT_ESTIMATE_14;
@@ -894,7 +904,71 @@ impl<'c, 'm> Cg<'c, 'm> {
         let uni = !force_varying && args.iter().all(|a| a.r == Repr::U);
         let addr = if uni { (self.rt_u)(kind, aux) } else { (self.rt_v)(kind, aux) };
         let fnp = self.const_fn_ptr(addr);
+        if !uni && self.t.native < self.t.lanes {
+            return self.callback_per_packet(fnp, aux, args, n_out);
+        }
         self.callback(fnp, aux, args, n_out, uni)
+    }
+
+    /// The packets of `native` lanes a vector of the variant's lanes is made of.
+    fn packets_of(&self, v: inkwell::values::VectorValue<'c>) -> Vec<inkwell::values::VectorValue<'c>> {
+        let n = self.t.native;
+        (0..v.get_type().get_size() / n)
+            .map(|k| {
+                let idx: Vec<_> = (k * n..(k + 1) * n).map(|i| self.i32c(u64::from(i))).collect();
+                self.b
+                    .build_shuffle_vector(v, v.get_type().get_undef(), VectorType::const_vector(&idx), "")
+                    .expect("shuffle")
+            })
+            .collect()
+    }
+
+    /// The vector of `parts` one after the other (equal widths, a power of two of them).
+    fn concat(&self, parts: &[inkwell::values::VectorValue<'c>]) -> inkwell::values::VectorValue<'c> {
+        let mut level = parts.to_vec();
+        while level.len() > 1 {
+            level = level
+                .chunks(2)
+                .map(|ab| {
+                    let w = ab[0].get_type().get_size();
+                    let idx: Vec<_> = (0..2 * w).map(|i| self.i32c(u64::from(i))).collect();
+                    self.b.build_shuffle_vector(ab[0], ab[1], VectorType::const_vector(&idx), "").expect("shuffle")
+                })
+                .collect();
+        }
+        level[0]
+    }
+
+    /// [`Cg::callback`] of a runtime library function compiled for one packet, called once
+    /// per packet of a variant that shades several: each call gets its packet's lanes of the
+    /// varying arguments and of the mask (uniform arguments as they are), and the results
+    /// are put back together.
+    fn callback_per_packet(&mut self, fnp: PointerValue<'c>, aux: u32, args: &[S<'c>], n_out: usize) -> Vec<S<'c>> {
+        assert!(!self.t.dual, "several packets per call of dual numbers");
+        let mask = self.load_mask(self.st().mask).v.into_vector_value();
+        let mask_parts = self.packets_of(mask);
+        let arg_parts: Vec<Option<Vec<_>>> =
+            args.iter().map(|a| (a.r != Repr::U).then(|| self.packets_of(a.v.into_vector_value()))).collect();
+        let lanes = self.t.lanes;
+        let mut outs: Vec<Vec<inkwell::values::VectorValue<'c>>> = vec![Vec::new(); n_out];
+        for (k, m) in mask_parts.into_iter().enumerate() {
+            let args_k: Vec<S<'c>> = args
+                .iter()
+                .zip(&arg_parts)
+                .map(|(a, p)| match p {
+                    Some(p) => S { r: Repr::V, v: p[k].into(), d: None },
+                    None => *a,
+                })
+                .collect();
+            // One packet's widths for the buffers of this call.
+            self.t.lanes = self.t.native;
+            let r = self.callback_masked(fnp, aux, &args_k, n_out, false, M { uni: false, v: m.into() });
+            self.t.lanes = lanes;
+            for (o, v) in outs.iter_mut().zip(r) {
+                o.push(v.v.into_vector_value());
+            }
+        }
+        outs.iter().map(|parts| S { r: Repr::V, v: self.concat(parts).into(), d: None }).collect()
     }
 
     fn rt_fn_type(&self) -> inkwell::types::FunctionType<'c> {
@@ -981,7 +1055,11 @@ impl<'c, 'm> Cg<'c, 'm> {
 
     /// The current mask as `u32` lanes in memory.
     fn mask_buf(&self) -> PointerValue<'c> {
-        let m = self.load_mask(self.st().mask);
+        self.mask_buf_of(self.load_mask(self.st().mask))
+    }
+
+    /// Mask `m` as `u32` lanes in memory.
+    fn mask_buf_of(&self, m: M<'c>) -> PointerValue<'c> {
         let i32t = self.cx.i32_type();
         let (ty, v): (BasicTypeEnum<'c>, BasicValueEnum<'c>) = match m.v {
             BasicValueEnum::IntValue(x) => (i32t.into(), self.b.build_int_s_extend(x, i32t, "").expect("sext").into()),
@@ -997,9 +1075,23 @@ impl<'c, 'm> Cg<'c, 'm> {
     }
 
     fn callback(&mut self, fnp: PointerValue<'c>, aux: u32, args: &[S<'c>], n_out: usize, uni: bool) -> Vec<S<'c>> {
+        let m = self.load_mask(self.st().mask);
+        self.callback_masked(fnp, aux, args, n_out, uni, m)
+    }
+
+    /// [`Cg::callback`] for the lanes of mask `m`.
+    fn callback_masked(
+        &mut self,
+        fnp: PointerValue<'c>,
+        aux: u32,
+        args: &[S<'c>],
+        n_out: usize,
+        uni: bool,
+        m: M<'c>,
+    ) -> Vec<S<'c>> {
         let inp = self.spill(args, uni);
         let out = self.out_buf(n_out, uni);
-        let mask = self.mask_buf();
+        let mask = self.mask_buf_of(m);
         let ctx = self.st().ctx;
         let callee = CallableValue::try_from(fnp).expect("callable");
         self.b
@@ -1320,6 +1412,15 @@ impl<'c, 'm> Cg<'c, 'm> {
     /// Masked store of a whole value.
     fn store_val(&mut self, s: SlotId, v: &Val<'c>) {
         let m = if self.slots[s.0 as usize].r == Repr::U { None } else { Some(self.load_mask(self.st().mask)) };
+        self.store_val_under(s, v, m);
+    }
+
+    /// [`Self::store_val`] writing every lane.
+    fn store_val_all(&mut self, s: SlotId, v: &Val<'c>) {
+        self.store_val_under(s, v, None);
+    }
+
+    fn store_val_under(&mut self, s: SlotId, v: &Val<'c>, m: Option<M<'c>>) {
         match v {
             Val::Num(c) => {
                 let n = self.slots[s.0 as usize].ptrs.len();
@@ -1674,9 +1775,14 @@ impl<'c, 'm> Cg<'c, 'm> {
     fn node(&mut self, node: &Node) -> R<bool> {
         match node {
             Node::Inst(v) => self.inst(*v)?,
-            Node::Store { slot, index, value } => {
+            Node::Store { slot, index, value, init } => {
                 let val = self.val(*value)?;
                 match index {
+                    // A fresh slot's first value: no lane it leaves inactive is read later, so
+                    // every lane is written. A merge would keep the slot's previous value alive
+                    // — in a light loop, a loop-carried register per component of every
+                    // variable declared in the body.
+                    None if *init => self.store_val_all(*slot, &val),
                     None => self.store_val(*slot, &val),
                     Some(ix) => self.store_elem(*slot, *ix, &val)?,
                 }
@@ -3252,54 +3358,21 @@ impl<'c> Cg<'c, '_> {
     }
 
     /// `normalize(v / max|c|)` for the lanes whose squared length is out of range
-    /// (`Vec3::normalize_rescaled`): a call of one function per module and representation,
-    /// not inlined — a cold path every `normalize` has, compiled once.
+    /// (`Vec3::normalize_rescaled`), emitted in place on the rare path. Not a call: x86-64
+    /// preserves no vector register across one, so a call inside a light loop made the
+    /// register allocator keep the loop's values in stack slots on the common path too.
     fn call_normalize_rescaled(&self, a: &[S<'c>]) -> Vec<S<'c>> {
         let r = a.iter().map(|s| s.r).max().unwrap_or(Repr::U);
-        let t = self.fty(r);
-        let name = format!("anysl_normalize_rescaled.{}", r.letter());
-        let f = self.m.get_function(&name).unwrap_or_else(|| {
-            let sty = self.cx.struct_type(&[t, t, t], false);
-            let f = self.m.add_function(
-                &name,
-                sty.fn_type(&[t.into(), t.into(), t.into()], false),
-                Some(Linkage::Internal),
-            );
-            for attr in ["noinline", "nounwind", "cold"] {
-                f.add_attribute(
-                    AttributeLoc::Function,
-                    self.cx.create_enum_attribute(Attribute::get_named_enum_kind_id(attr), 0),
-                );
-            }
-            self.set_fn_attrs(f);
-            let back = self.b.get_insert_block().expect("positioned");
-            self.b.position_at_end(self.cx.append_basic_block(f, "entry"));
-            let a: Vec<S<'c>> = (0..3).map(|k| S { r, v: f.get_nth_param(k).expect("param"), d: None }).collect();
-            let zero = self.fc(0.0);
-            let m = self.minmax(self.minmax(self.abs(a[0]), self.abs(a[1]), true), self.abs(a[2]), true);
-            let usable = self
-                .mand(self.cmp(FloatPredicate::OGT, m, zero), self.cmp(FloatPredicate::OLT, m, self.fc(f64::INFINITY)));
-            let den = self.sel(usable, m, self.fc(1.0));
-            let w: Vec<S<'c>> = a.iter().map(|&c| self.div(c, den)).collect();
-            let wl2 = self.dot(&w, &w);
-            let wk = self.sel(self.cmp(FloatPredicate::OGT, wl2, zero), self.rsqrt(wl2), zero);
-            let mut agg = sty.get_undef();
-            for (k, &c) in w.iter().enumerate() {
-                let v = self.to(self.mul(c, wk), r).v;
-                agg = self.b.build_insert_value(agg, v, k as u32, "").expect("insert").into_struct_value();
-            }
-            self.b.build_return(Some(&agg)).expect("ret");
-            self.b.position_at_end(back);
-            f
-        });
-        let args: Vec<BasicMetadataValueEnum<'c>> = a.iter().map(|&s| self.to(s, r).v.into()).collect();
-        let ret = self.b.build_call(f, &args, "").expect("call").try_as_basic_value().basic().expect("value");
-        (0..3)
-            .map(|k| {
-                let v = self.b.build_extract_value(ret.into_struct_value(), k, "").expect("extract");
-                S { r, v, d: None }
-            })
-            .collect()
+        let a: Vec<S<'c>> = a.iter().map(|&s| S { r, v: self.to(s, r).v, d: None }).collect();
+        let zero = self.fc(0.0);
+        let m = self.minmax(self.minmax(self.abs(a[0]), self.abs(a[1]), true), self.abs(a[2]), true);
+        let usable =
+            self.mand(self.cmp(FloatPredicate::OGT, m, zero), self.cmp(FloatPredicate::OLT, m, self.fc(f64::INFINITY)));
+        let den = self.sel(usable, m, self.fc(1.0));
+        let w: Vec<S<'c>> = a.iter().map(|&c| self.div(c, den)).collect();
+        let wl2 = self.dot(&w, &w);
+        let wk = self.sel(self.cmp(FloatPredicate::OGT, wl2, zero), self.rsqrt(wl2), zero);
+        w.iter().map(|&c| S { r, v: self.to(self.mul(c, wk), r).v, d: None }).collect()
     }
 
     /// `rare(common)` where some lane of `m` is set, else `common`: a branch around code that

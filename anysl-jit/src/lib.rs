@@ -33,7 +33,7 @@ pub use shader::{variant_of, JitShader};
 use abi::ShadeFn;
 use anysl_ad::Dual;
 use anysl_rsl::ir::{Const, Module};
-use anysl_simd::{F32x16, F32x4, F32x8};
+use anysl_simd::{F32x16, F32x4, F32x8, Pair};
 use codegen::{Cg, Target};
 use inkwell::context::Context;
 use inkwell::execution_engine::ExecutionEngine;
@@ -59,13 +59,18 @@ pub enum Variant {
     DualF32,
     /// `Dual<F32x8>`
     DualX8,
+    /// `Pair<Pair<F32x8>>`: four 8-lane packets per call, in 8-lane instructions.
+    X8x4,
+    /// `Pair<F32x16>`: two 16-lane packets per call, in 16-lane instructions.
+    X16x2,
 }
 
 impl Variant {
     /// Every variant.
-    pub const ALL: [Variant; 6] = [Self::F32, Self::X4, Self::X8, Self::X16, Self::DualF32, Self::DualX8];
+    pub const ALL: [Variant; 8] =
+        [Self::F32, Self::X4, Self::X8, Self::X16, Self::DualF32, Self::DualX8, Self::X8x4, Self::X16x2];
 
-    /// Lanes of the underlying vectors.
+    /// Lanes shaded per call (the width of the compiled code's vectors).
     #[must_use]
     pub const fn lanes(self) -> u32 {
         match self {
@@ -73,6 +78,18 @@ impl Variant {
             Self::X4 => 4,
             Self::X8 | Self::DualX8 => 8,
             Self::X16 => 16,
+            Self::X8x4 | Self::X16x2 => 32,
+        }
+    }
+
+    /// Lanes of the machine instructions: [`Variant::lanes`] is this times the packets
+    /// shaded per call.
+    #[must_use]
+    pub const fn native_lanes(self) -> u32 {
+        match self {
+            Self::X8x4 => 8,
+            Self::X16x2 => 16,
+            v => v.lanes(),
         }
     }
 
@@ -92,6 +109,8 @@ impl Variant {
             Self::X16 => "x16",
             Self::DualF32 => "dual-f32",
             Self::DualX8 => "dual-x8",
+            Self::X8x4 => "x8x4",
+            Self::X16x2 => "x16x2",
         }
     }
 
@@ -105,6 +124,8 @@ impl Variant {
             Self::X16 => 3,
             Self::DualF32 => 4,
             Self::DualX8 => 5,
+            Self::X8x4 => 6,
+            Self::X16x2 => 7,
         }
     }
 
@@ -119,12 +140,18 @@ impl Variant {
             Self::X16 => L::of::<F32x16>(),
             Self::DualF32 => L::of::<Dual<f32>>(),
             Self::DualX8 => L::of::<Dual<F32x8>>(),
+            Self::X8x4 => L::of::<Pair<Pair<F32x8>>>(),
+            Self::X16x2 => L::of::<Pair<F32x16>>(),
         }
     }
 
     /// Where compiled code of this variant calls for a runtime function ([`rt::rt_addr`]).
+    /// Several packets per call use the function of one packet, called once per packet (so
+    /// the runtime library is compiled for no more float types).
     fn rt_resolver(self) -> fn(rt::RtKind, u32) -> usize {
         match self {
+            Self::X8x4 => rt::rt_addr::<F32x8>,
+            Self::X16x2 => rt::rt_addr::<F32x16>,
             Self::F32 => rt::rt_addr::<f32>,
             Self::X4 => rt::rt_addr::<F32x4>,
             Self::X8 => rt::rt_addr::<F32x8>,
@@ -342,6 +369,7 @@ pub fn compile_with(
     let cref: &'static Context = unsafe { &*(ctx.as_ref() as *const Context) };
     let target = Target {
         lanes: variant.lanes(),
+        native: variant.native_lanes(),
         dual: variant.dual(),
         threaded: opts.threaded,
         inline_noise: opts.inline_noise,
@@ -355,6 +383,13 @@ pub fn compile_with(
     };
     cg.layout = variant.globals_layout();
     cg.fn_attrs = vec![("target-cpu".into(), cpu.clone()), ("target-features".into(), features.clone())];
+    if variant.native_lanes() > 1 && variant.native_lanes() < variant.lanes() {
+        // Several packets per call: keep the instructions at one packet's width (wider
+        // vectors are split into independent packets, not into wider registers).
+        let bits = (32 * variant.native_lanes()).to_string();
+        cg.fn_attrs.push(("prefer-vector-width".into(), bits.clone()));
+        cg.fn_attrs.push(("min-legal-vector-width".into(), bits));
+    }
     cg.generate(&m, values).map_err(|e| JitError(e.0))?;
     stats.threaded_fns = cg.threaded_fns;
     let llmod = std::mem::replace(&mut cg.m, cref.create_module("empty"));

@@ -637,6 +637,7 @@ impl<F: ShadingFloat, C: ShadingContext<F>, G: JitFloat> HostTable<F, C, G> {
     }
 }
 
+/// Most floats per value of any [`JitFloat`] (`Dual<F32x16>`).
 const MAX_STRIDE: usize = 48;
 
 unsafe extern "C" fn host_illuminance<F: ShadingFloat, C: ShadingContext<F>, G: JitFloat>(
@@ -668,7 +669,7 @@ unsafe extern "C" fn host_illuminance<F: ShadingFloat, C: ShadingContext<F>, G: 
         let mut o = HOut::<F, G>::new(buf);
         o.v3(l);
         o.c3(cl);
-        let mut mb = [0u32; 16];
+        let mut mb = [0u32; crate::abi::MAX_LANES];
         G::write_mask(cast::<F::Mask, G::Mask>(e.mask()), mb.as_mut_ptr());
         body(env, mb.as_ptr(), buf);
     });

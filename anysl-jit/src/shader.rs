@@ -10,7 +10,7 @@ use anysl_core::shader::{ParamError, ParamValue, ShaderMeta};
 use anysl_rsl::back::interp::{InterpShader, Program};
 use anysl_rsl::ir::{Const, Module};
 use anysl_rsl::CompileOptions;
-use anysl_simd::{F32x16, F32x4, F32x8};
+use anysl_simd::{F32x16, F32x4, F32x8, Pair};
 use std::any::TypeId;
 use std::path::Path;
 use std::sync::{Arc, OnceLock};
@@ -26,6 +26,8 @@ pub fn variant_of<F: 'static>() -> Option<Variant> {
         (TypeId::of::<F32x16>(), Variant::X16),
         (TypeId::of::<Dual<f32>>(), Variant::DualF32),
         (TypeId::of::<Dual<F32x8>>(), Variant::DualX8),
+        (TypeId::of::<Pair<Pair<F32x8>>>(), Variant::X8x4),
+        (TypeId::of::<Pair<F32x16>>(), Variant::X16x2),
     ]
     .into_iter()
     .find(|(id, _)| *id == t)
@@ -44,7 +46,7 @@ pub struct JitShader {
     pub values: Vec<Const>,
     /// Compiler settings.
     pub opts: JitOptions,
-    variants: [Slot; 6],
+    variants: [Slot; Variant::ALL.len()],
     interp: InterpShader,
     /// `values` as the run-time parameter block that code compiled without specialization
     /// reads ([`crate::codegen::param_block`]).
@@ -156,7 +158,7 @@ impl JitShader {
         // the return value, which has the layout of its output buffer.
         assert!(crate::abi::output_layout_is_buffer::<G>(), "SurfaceOutput layout differs from the JIT's");
         let mut out = std::mem::MaybeUninit::<SurfaceOutput<G>>::uninit();
-        let mut mbuf = [0u32; 16];
+        let mut mbuf = [0u32; crate::abi::MAX_LANES];
         // The compiled code reads the globals in place, at the offsets of `Globals<F>`'s
         // layout (`abi::GlobalsLayout`), while the host callbacks hold the context mutably:
         // they never write the globals (a `ShadingContext` hands them out only by shared
@@ -225,6 +227,8 @@ impl SurfaceShader for JitShader {
                     Variant::X16 => self.run::<F, C, F32x16>(cs, ctx, e),
                     Variant::DualF32 => self.run::<F, C, Dual<f32>>(cs, ctx, e),
                     Variant::DualX8 => self.run::<F, C, Dual<F32x8>>(cs, ctx, e),
+                    Variant::X8x4 => self.run::<F, C, Pair<Pair<F32x8>>>(cs, ctx, e),
+                    Variant::X16x2 => self.run::<F, C, Pair<F32x16>>(cs, ctx, e),
                 };
             }
         }

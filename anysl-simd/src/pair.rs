@@ -14,8 +14,11 @@ use core::ops::{
     Add, AddAssign, BitAnd, BitOr, BitXor, Div, DivAssign, Mul, MulAssign, Neg, Not, Shl, Shr, Sub, SubAssign,
 };
 
-/// Two packets of `F`, lanes `0..F::LANES` in `.0` and the rest in `.1`.
+/// Two packets of `F`, lanes `0..F::LANES` in `.0` and the rest in `.1` — in that order in
+/// memory (`repr(C)`), so a `Pair<Pair<F32x8>>` is 32 consecutive lanes, as JIT-compiled code
+/// reads it.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[repr(C)]
 pub struct Pair<F>(pub F, pub F);
 
 /// The lane mask of a [`Pair`].

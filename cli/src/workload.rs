@@ -271,6 +271,11 @@ impl System for Jit {
             Variant::X16 => {
                 env.for_chunks(out, |start, out| scene.shade_surface::<F32x16, _, _>(jit, lights, start, out))
             }
+            Variant::X8x4 => env
+                .for_chunks(out, |start, out| scene.shade_surface::<Pair<Pair<F32x8>>, _, _>(jit, lights, start, out)),
+            Variant::X16x2 => {
+                env.for_chunks(out, |start, out| scene.shade_surface::<Pair<F32x16>, _, _>(jit, lights, start, out))
+            }
             v => return Err(format!("{}: variant {v:?} is not measured", self.name)),
         }
         Ok(())
@@ -295,8 +300,10 @@ pub fn systems() -> Vec<Box<dyn System>> {
     #[cfg(feature = "jit")]
     v.extend([
         Jit::boxed("anysl-jit-f32", anysl_jit::Variant::F32),
-        Jit::boxed("anysl-jit-x8", anysl_jit::Variant::X8),
-        Jit::boxed("anysl-jit-x16", anysl_jit::Variant::X16),
+        // The same packet shapes as the compiled rows above: the JIT code shades four 8-lane
+        // (two 16-lane) packets per call, so it is compared with `anysl-f32x8`/`-x16` like for like.
+        Jit::boxed("anysl-jit-x8", anysl_jit::Variant::X8x4),
+        Jit::boxed("anysl-jit-x16", anysl_jit::Variant::X16x2),
     ]);
     v
 }

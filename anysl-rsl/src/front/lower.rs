@@ -1046,7 +1046,7 @@ impl<'a, 'd> Lowerer<'a, 'd> {
                     }
                     self.func.slots[slot.0 as usize].ty.detail = Detail::Varying;
                 }
-                self.emit(Node::Store { slot, index: None, value: v.v });
+                self.emit(Node::Store { slot, index: None, value: v.v, init: false });
             }
         }
         if flow > entry {
@@ -1160,12 +1160,12 @@ impl<'a, 'd> Lowerer<'a, 'd> {
                 VarInfo { binding: Binding::Slot(slot), span: d.name.span, read_only: false, flow },
             );
             match init {
-                Some(Init::Whole(Some(v))) => self.emit(Node::Store { slot, index: None, value: v.v }),
+                Some(Init::Whole(Some(v))) => self.emit(Node::Store { slot, index: None, value: v.v, init: true }),
                 Some(Init::Elems(vals)) => {
                     for (i, v) in vals.into_iter().enumerate() {
                         if let Some(v) = v {
                             let idx = self.constant(Const::Float(i as f64), BaseType::Float, d.span);
-                            self.emit(Node::Store { slot, index: Some(idx.v), value: v.v });
+                            self.emit(Node::Store { slot, index: Some(idx.v), value: v.v, init: false });
                         }
                     }
                 }
@@ -1723,7 +1723,7 @@ impl<'a, 'd> Lowerer<'a, 'd> {
     }
 
     fn store(&mut self, p: &Place, v: Val) {
-        self.emit(Node::Store { slot: p.slot, index: p.index.map(|i| i.v), value: v.v });
+        self.emit(Node::Store { slot: p.slot, index: p.index.map(|i| i.v), value: v.v, init: false });
     }
 
     fn load_place(&mut self, p: &Place, span: Span) -> Val {
@@ -2282,7 +2282,7 @@ impl<'a, 'd> Lowerer<'a, 'd> {
                     let s = self.new_slot(&format!("{fname}.{}", p.name.name), ty, SlotKind::Local, p.span);
                     let cur = self.load_place(&pl, span);
                     if let Some(cur) = self.convert(cur, p.ty.base, span) {
-                        self.emit(Node::Store { slot: s, index: None, value: cur.v });
+                        self.emit(Node::Store { slot: s, index: None, value: cur.v, init: true });
                     }
                     binds.push((
                         p.name.name.clone(),

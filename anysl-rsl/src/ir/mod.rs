@@ -325,6 +325,11 @@ pub enum Node {
         index: Option<Value>,
         /// The new value.
         value: Value,
+        /// The store that gives a fresh slot its first value (a declaration's initializer, a
+        /// copied-in output argument). Every later access of the slot is lexically inside the
+        /// scope it starts and so runs under these lanes or fewer: the inactive lanes of this
+        /// store are never read, and a back end may write every lane instead of merging.
+        init: bool,
     },
     /// Two-way branch on a boolean value.
     If {

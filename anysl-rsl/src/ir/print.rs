@@ -168,7 +168,7 @@ impl Function {
         for n in b {
             match n {
                 Node::Inst(v) => writeln!(out, "{pad}{}", self.inst_text(*v))?,
-                Node::Store { slot, index, value } => match index {
+                Node::Store { slot, index, value, .. } => match index {
                     None => writeln!(out, "{pad}store {} = {}", self.slot_ref(*slot), self.val(*value))?,
                     Some(i) => {
                         writeln!(out, "{pad}store {}[{}] = {}", self.slot_ref(*slot), self.val(*i), self.val(*value))?

@@ -121,7 +121,7 @@ fn visit(
                 raise(&mut f, var, changed);
                 inst_var[v.0 as usize] = f;
             }
-            Node::Store { slot, index, value } => {
+            Node::Store { slot, index, value, .. } => {
                 let var = varying_flow || inst_var[value.0 as usize] || index.is_some_and(|i| inst_var[i.0 as usize]);
                 let mut f = slot_var[slot.0 as usize];
                 raise(&mut f, var, changed);

@@ -295,7 +295,7 @@ impl Cx<'_> {
         for n in b {
             match n {
                 Node::Inst(v) => self.inst(*v, &mut out, k)?,
-                Node::Store { slot, index, value } => {
+                Node::Store { slot, index, value, .. } => {
                     let dst = self.slots[slot.0 as usize];
                     let sty = self.m.func.slot(*slot).ty;
                     let src = self.v(*value);

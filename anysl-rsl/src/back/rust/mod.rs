@@ -1401,7 +1401,7 @@ impl<'a> Gen<'a> {
     fn node(&mut self, n: &'a Node) -> Result<(), GenError> {
         match n {
             Node::Inst(v) => self.inst(*v),
-            Node::Store { slot, index, value } => {
+            Node::Store { slot, index, value, .. } => {
                 self.store(*slot, *index, *value);
                 Ok(())
             }
