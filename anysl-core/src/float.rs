@@ -215,6 +215,16 @@ pub trait ShadingFloat:
         }
         Self::from_lanes(&buf[..Self::LANES])
     }
+    /// `*self = Self::load(src)`, negated when `neg`, written in place. Several-packet types
+    /// ([`Pair`](https://docs.rs/anysl-simd)) write each packet where it lies: a value that is
+    /// built in a temporary and then assigned whole is copied with moves wider than the
+    /// stores that made it (a 64-byte load of two 32-byte stores at 8 lanes), and every such
+    /// load waits for the stores to retire instead of being forwarded from them.
+    #[inline(always)]
+    fn load_into(&mut self, src: &[f32], neg: bool) {
+        let v = Self::load(src);
+        *self = if neg { -v } else { v };
+    }
     /// Stores lane values (see [`ShadingFloat::lane`]) to `LANES` consecutive slots.
     #[inline(always)]
     fn store(self, dst: &mut [f32]) {

@@ -186,8 +186,14 @@ impl JitShader {
                 self.param_block.as_ptr(),
             );
         }
-        // SAFETY: the compiled code wrote all six components (F and G are the same type).
-        cast::<SurfaceOutput<G>, SurfaceOutput<F>>(unsafe { out.assume_init() })
+        // Read back component by component with `G::read` (one load per packet, the width
+        // of the compiled code's stores), not as a whole: a copy of the whole struct moves it
+        // with wider loads than the stores that wrote it, and store forwarding fails on each.
+        // SAFETY: the compiled code wrote all six components, `STRIDE` floats apart
+        // (`output_layout_is_buffer`); F and G are the same type.
+        let o = out.as_ptr().cast::<f32>();
+        let rd = |k: usize| cast::<G, F>(unsafe { G::read(o.add(k * G::STRIDE)) });
+        SurfaceOutput { Ci: Color::new(rd(0), rd(1), rd(2)), Oi: Color::new(rd(3), rd(4), rd(5)) }
     }
 }
 

@@ -250,6 +250,11 @@ impl<F: ShadingFloat> ShadingFloat for Pair<F> {
         Self(F::load(src), F::load(&src[F::LANES..]))
     }
     #[inline(always)]
+    fn load_into(&mut self, src: &[f32], neg: bool) {
+        self.0.load_into(src, neg);
+        self.1.load_into(&src[F::LANES..], neg);
+    }
+    #[inline(always)]
     fn store(self, dst: &mut [f32]) {
         self.0.store(dst);
         self.1.store(&mut dst[F::LANES..]);

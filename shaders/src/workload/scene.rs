@@ -218,11 +218,12 @@ impl WorkloadScene {
     /// the globals in memory) then costs no rebuilt `Globals` per packet.
     #[inline(always)]
     pub fn set_points<F: ShadingFloat>(&self, g: &mut Globals<F>, i: usize) {
-        // Component by component, each lane vector loaded straight into its global: a `Vec3`
-        // built first and assigned whole goes through a stack temporary that is copied with
-        // moves wider than the stores that made it (a 64-byte load from two 32-byte stores at
-        // 8 lanes), which stalls store forwarding on every packet of a shader that reads the
-        // globals in memory (JIT code).
+        // Component by component, each lane vector written straight into its global
+        // (`ShadingFloat::load_into`): a value built first and assigned whole goes through a
+        // temporary copied with moves wider than the stores that made it (a 64-byte load
+        // from two 32-byte stores at 8 lanes), which stalls store forwarding on every packet
+        // of a shader that reads the globals in memory (JIT code). `Ng` is loaded again
+        // rather than copied from `N` for the same reason.
         let comp = |k: usize| {
             if F::UNIT_ROUNDOFF < 1e-10 && k < F64_FIELDS {
                 F::from_lanes(&self.f64s[k][i..i + F::LANES])
@@ -230,20 +231,30 @@ impl WorkloadScene {
                 F::load(self.f32_lanes::<F>(k, i))
             }
         };
-        let seeded = |k: usize, dx: usize, dy: usize| {
-            let v = comp(k);
-            if F::HAS_DERIVS {
-                v.with_derivs(comp(dx), comp(dy))
+        let set = |dst: &mut F, k: usize, derivs: Option<(usize, usize)>, neg: bool| {
+            if F::HAS_DERIVS || (F::UNIT_ROUNDOFF < 1e-10 && k < F64_FIELDS) {
+                let v = match derivs {
+                    Some((dx, dy)) if F::HAS_DERIVS => comp(k).with_derivs(comp(dx), comp(dy)),
+                    _ => comp(k),
+                };
+                *dst = if neg { -v } else { v };
             } else {
-                v
+                dst.load_into(self.f32_lanes::<F>(k, i), neg);
             }
         };
-        let p = |c: usize| seeded(P + c, DPDX + c, DPDY + c);
-        let n = |c: usize| seeded(N + c, DNDX + c, DNDY + c);
-        (g.P.x, g.P.y, g.P.z) = (p(0), p(1), p(2));
-        (g.N.x, g.N.y, g.N.z) = (n(0), n(1), n(2));
-        (g.Ng.x, g.Ng.y, g.Ng.z) = (g.N.x, g.N.y, g.N.z);
-        (g.I.x, g.I.y, g.I.z) = (-comp(V), -comp(V + 1), -comp(V + 2));
+        for (c, (p, (n, ng))) in [&mut g.P.x, &mut g.P.y, &mut g.P.z]
+            .into_iter()
+            .zip([&mut g.N.x, &mut g.N.y, &mut g.N.z].into_iter().zip([&mut g.Ng.x, &mut g.Ng.y, &mut g.Ng.z]))
+            .enumerate()
+        {
+            set(p, P + c, Some((DPDX + c, DPDY + c)), false);
+            set(n, N + c, Some((DNDX + c, DNDY + c)), false);
+            set(ng, N + c, Some((DNDX + c, DNDY + c)), false);
+        }
+        for (c, i_c) in [&mut g.I.x, &mut g.I.y, &mut g.I.z].into_iter().enumerate() {
+            // `V` holds the direction to the eye; `I` is its negation (derivatives zero).
+            set(i_c, V + c, None, true);
+        }
     }
 
     /// One shading call over points `start .. start + out[0].len()` (a multiple of `F::LANES`)
