@@ -216,6 +216,11 @@ impl Shader for JitShader {
     }
 }
 
+/// Whether `F` may be `G` (`variant_of` decides which it is): the same lanes and size.
+const fn may_be<F: ShadingFloat, G: JitFloat>() -> bool {
+    F::LANES == G::LANES && core::mem::size_of::<F>() == core::mem::size_of::<G>()
+}
+
 impl SurfaceShader for JitShader {
     /// As the interpreter's: the same module (the compiled code loads every global slot at
     /// entry and hands `P` to the light loops, like the interpreter).
@@ -226,16 +231,27 @@ impl SurfaceShader for JitShader {
     fn shade<F: ShadingFloat, C: ShadingContext<F>>(&self, ctx: &mut C, e: &mut Exec<F>) -> SurfaceOutput<F> {
         if let Some(v) = variant_of::<F>() {
             if let Ok(cs) = self.variant_ref(v) {
-                return match v {
-                    Variant::F32 => self.run::<F, C, f32>(cs, ctx, e),
-                    Variant::X4 => self.run::<F, C, F32x4>(cs, ctx, e),
-                    Variant::X8 => self.run::<F, C, F32x8>(cs, ctx, e),
-                    Variant::X16 => self.run::<F, C, F32x16>(cs, ctx, e),
-                    Variant::DualF32 => self.run::<F, C, Dual<f32>>(cs, ctx, e),
-                    Variant::DualX8 => self.run::<F, C, Dual<F32x8>>(cs, ctx, e),
-                    Variant::X8x4 => self.run::<F, C, Pair<Pair<F32x8>>>(cs, ctx, e),
-                    Variant::X16x2 => self.run::<F, C, Pair<F32x16>>(cs, ctx, e),
-                };
+                // Each arm runs only where `G` is `F`; the `const` guard keeps the other
+                // `run::<F, C, G>` (and their host tables) from being instantiated for this
+                // `F` at all: eight variants would otherwise cost every float type and
+                // context that calls a JIT shader eight copies.
+                macro_rules! arm {
+                    ($G:ty) => {
+                        if const { may_be::<F, $G>() } {
+                            return self.run::<F, C, $G>(cs, ctx, e);
+                        }
+                    };
+                }
+                match v {
+                    Variant::F32 => arm!(f32),
+                    Variant::X4 => arm!(F32x4),
+                    Variant::X8 => arm!(F32x8),
+                    Variant::X16 => arm!(F32x16),
+                    Variant::DualF32 => arm!(Dual<f32>),
+                    Variant::DualX8 => arm!(Dual<F32x8>),
+                    Variant::X8x4 => arm!(Pair<Pair<F32x8>>),
+                    Variant::X16x2 => arm!(Pair<F32x16>),
+                }
             }
         }
         self.interp.shade(ctx, e)
