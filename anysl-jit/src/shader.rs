@@ -252,6 +252,10 @@ impl SurfaceShader for JitShader {
                     Variant::X8x4 => arm!(Pair<Pair<F32x8>>),
                     Variant::X16x2 => arm!(Pair<F32x16>),
                 }
+                unreachable!(
+                    "variant_of::<{}>() named {v:?}, a type of other lanes or size",
+                    core::any::type_name::<F>()
+                );
             }
         }
         self.interp.shade(ctx, e)
