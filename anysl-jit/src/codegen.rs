@@ -1415,11 +1415,7 @@ impl<'c, 'm> Cg<'c, 'm> {
         self.store_val_under(s, v, m);
     }
 
-    /// [`Self::store_val`] writing every lane.
-    fn store_val_all(&mut self, s: SlotId, v: &Val<'c>) {
-        self.store_val_under(s, v, None);
-    }
-
+    /// [`Self::store_val`] under mask `m` (`None`: every lane).
     fn store_val_under(&mut self, s: SlotId, v: &Val<'c>, m: Option<M<'c>>) {
         match v {
             Val::Num(c) => {
@@ -1782,7 +1778,7 @@ impl<'c, 'm> Cg<'c, 'm> {
                     // every lane is written. A merge would keep the slot's previous value alive
                     // — in a light loop, a loop-carried register per component of every
                     // variable declared in the body.
-                    None if *init => self.store_val_all(*slot, &val),
+                    None if *init => self.store_val_under(*slot, &val, None),
                     None => self.store_val(*slot, &val),
                     Some(ix) => self.store_elem(*slot, *ix, &val)?,
                 }
@@ -3352,7 +3348,7 @@ impl<'c> Cg<'c, '_> {
             self.mor(self.cmp(FloatPredicate::OLT, l2, self.fc(lo)), self.cmp(FloatPredicate::OGT, l2, self.fc(hi)));
         // The rare path, normalize(v / max|c|), only when some lane needs it (as anysl-core).
         self.when_any(rescale, unit, |cg, unit| {
-            let r = cg.call_normalize_rescaled(a);
+            let r = cg.normalize_rescaled(a);
             (0..3).map(|c| cg.sel(rescale, r[c], unit[c])).collect()
         })
     }
@@ -3361,7 +3357,7 @@ impl<'c> Cg<'c, '_> {
     /// (`Vec3::normalize_rescaled`), emitted in place on the rare path. Not a call: x86-64
     /// preserves no vector register across one, so a call inside a light loop made the
     /// register allocator keep the loop's values in stack slots on the common path too.
-    fn call_normalize_rescaled(&self, a: &[S<'c>]) -> Vec<S<'c>> {
+    fn normalize_rescaled(&self, a: &[S<'c>]) -> Vec<S<'c>> {
         let r = a.iter().map(|s| s.r).max().unwrap_or(Repr::U);
         let a: Vec<S<'c>> = a.iter().map(|&s| S { r, v: self.to(s, r).v, d: None }).collect();
         let zero = self.fc(0.0);

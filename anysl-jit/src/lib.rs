@@ -383,7 +383,7 @@ pub fn compile_with(
     };
     cg.layout = variant.globals_layout();
     cg.fn_attrs = vec![("target-cpu".into(), cpu.clone()), ("target-features".into(), features.clone())];
-    if variant.native_lanes() > 1 && variant.native_lanes() < variant.lanes() {
+    if variant.native_lanes() < variant.lanes() {
         // Several packets per call: keep the instructions at one packet's width (wider
         // vectors are split into independent packets, not into wider registers).
         let bits = (32 * variant.native_lanes()).to_string();

@@ -211,6 +211,28 @@ impl WorkloadScene {
         g
     }
 
+    /// Lanes `i .. i + F::LANES` of input field `k`: from the `f64` inputs for an accurate
+    /// type, else one load of the `f32` ones.
+    #[inline(always)]
+    fn lanes<F: ShadingFloat>(&self, k: usize, i: usize) -> F {
+        if F::UNIT_ROUNDOFF < 1e-10 && k < F64_FIELDS {
+            F::from_lanes(&self.f64s[k][i..i + F::LANES])
+        } else {
+            F::load(self.f32_lanes::<F>(k, i))
+        }
+    }
+
+    /// Field `k` with the derivatives in fields `dx`, `dy` for a type that carries them.
+    #[inline(always)]
+    fn seeded<F: ShadingFloat>(&self, k: usize, (dx, dy): (usize, usize), i: usize) -> F {
+        let v = self.lanes::<F>(k, i);
+        if F::HAS_DERIVS {
+            v.with_derivs(self.lanes(dx, i), self.lanes(dy, i))
+        } else {
+            v
+        }
+    }
+
     /// [`WorkloadScene::set_points`] for a shader inlined into the loop that reads the
     /// globals (`WorkloadScene::globals`, the per-packet path of `shade`).
     #[inline(always)]
@@ -219,27 +241,12 @@ impl WorkloadScene {
         // inlined into the loop (`WorkloadScene::shade`), and its whole-value loads are
         // forwarded from these stores (written packet by packet, `set_points`, they measured
         // 13–16 % slower with `Pair`s: a wide load of narrower stores is not forwarded).
-        let comp = |k: usize| {
-            if F::UNIT_ROUNDOFF < 1e-10 && k < F64_FIELDS {
-                F::from_lanes(&self.f64s[k][i..i + F::LANES])
-            } else {
-                F::load(self.f32_lanes::<F>(k, i))
-            }
-        };
-        let seeded = |k: usize, dx: usize, dy: usize| {
-            let v = comp(k);
-            if F::HAS_DERIVS {
-                v.with_derivs(comp(dx), comp(dy))
-            } else {
-                v
-            }
-        };
-        let p = |c: usize| seeded(P + c, DPDX + c, DPDY + c);
-        let n = |c: usize| seeded(N + c, DNDX + c, DNDY + c);
+        let p = |c: usize| self.seeded(P + c, (DPDX + c, DPDY + c), i);
+        let n = |c: usize| self.seeded(N + c, (DNDX + c, DNDY + c), i);
         (g.P.x, g.P.y, g.P.z) = (p(0), p(1), p(2));
         (g.N.x, g.N.y, g.N.z) = (n(0), n(1), n(2));
         (g.Ng.x, g.Ng.y, g.Ng.z) = (g.N.x, g.N.y, g.N.z);
-        (g.I.x, g.I.y, g.I.z) = (-comp(V), -comp(V + 1), -comp(V + 2));
+        (g.I.x, g.I.y, g.I.z) = (-self.lanes::<F>(V, i), -self.lanes::<F>(V + 1, i), -self.lanes::<F>(V + 2, i));
     }
 
     /// Writes the globals that differ from packet to packet — `P`, `N` (= `Ng`) and `I` of
@@ -257,37 +264,24 @@ impl WorkloadScene {
         // from two 32-byte stores at 8 lanes), which stalls store forwarding on every packet
         // of a shader that reads the globals in memory (JIT code). `Ng` is loaded again
         // rather than copied from `N` for the same reason.
-        let comp = |k: usize| {
-            if F::UNIT_ROUNDOFF < 1e-10 && k < F64_FIELDS {
-                F::from_lanes(&self.f64s[k][i..i + F::LANES])
-            } else {
-                F::load(self.f32_lanes::<F>(k, i))
+        let set3 = |dst: [&mut F; 3], k: usize, derivs: Option<(usize, usize)>, neg: bool| {
+            for (c, d) in dst.into_iter().enumerate() {
+                if F::HAS_DERIVS || (F::UNIT_ROUNDOFF < 1e-10 && k < F64_FIELDS) {
+                    let v: F = match derivs {
+                        Some((dx, dy)) => self.seeded(k + c, (dx + c, dy + c), i),
+                        None => self.lanes(k + c, i),
+                    };
+                    *d = if neg { -v } else { v };
+                } else {
+                    d.load_into(self.f32_lanes::<F>(k + c, i), neg);
+                }
             }
         };
-        let set = |dst: &mut F, k: usize, derivs: Option<(usize, usize)>, neg: bool| {
-            if F::HAS_DERIVS || (F::UNIT_ROUNDOFF < 1e-10 && k < F64_FIELDS) {
-                let v = match derivs {
-                    Some((dx, dy)) if F::HAS_DERIVS => comp(k).with_derivs(comp(dx), comp(dy)),
-                    _ => comp(k),
-                };
-                *dst = if neg { -v } else { v };
-            } else {
-                dst.load_into(self.f32_lanes::<F>(k, i), neg);
-            }
-        };
-        for (c, (p, (n, ng))) in [&mut g.P.x, &mut g.P.y, &mut g.P.z]
-            .into_iter()
-            .zip([&mut g.N.x, &mut g.N.y, &mut g.N.z].into_iter().zip([&mut g.Ng.x, &mut g.Ng.y, &mut g.Ng.z]))
-            .enumerate()
-        {
-            set(p, P + c, Some((DPDX + c, DPDY + c)), false);
-            set(n, N + c, Some((DNDX + c, DNDY + c)), false);
-            set(ng, N + c, Some((DNDX + c, DNDY + c)), false);
-        }
-        for (c, i_c) in [&mut g.I.x, &mut g.I.y, &mut g.I.z].into_iter().enumerate() {
-            // `V` holds the direction to the eye; `I` is its negation (derivatives zero).
-            set(i_c, V + c, None, true);
-        }
+        set3([&mut g.P.x, &mut g.P.y, &mut g.P.z], P, Some((DPDX, DPDY)), false);
+        set3([&mut g.N.x, &mut g.N.y, &mut g.N.z], N, Some((DNDX, DNDY)), false);
+        set3([&mut g.Ng.x, &mut g.Ng.y, &mut g.Ng.z], N, Some((DNDX, DNDY)), false);
+        // `V` holds the direction to the eye; `I` is its negation (derivatives zero).
+        set3([&mut g.I.x, &mut g.I.y, &mut g.I.z], V, None, true);
     }
 
     /// One shading call over points `start .. start + out[0].len()` (a multiple of `F::LANES`)
