@@ -554,6 +554,84 @@ pub trait ShadingContext<F: ShadingFloat> {
     }
 }
 
+/// [`ShadingContext`] without generic methods, so that it can be a trait object: code that
+/// calls the context rarely (an interpreter, once per op and chunk) takes [`Erased`] and is
+/// compiled once per float type instead of once per float type and context. Every
+/// `ShadingContext` is one.
+pub trait ErasedContext<F: ShadingFloat> {
+    /// [`ShadingContext::globals`].
+    fn globals_dyn(&self) -> &Globals<F>;
+    /// [`ShadingContext::illuminance`] with the body behind a reference.
+    fn illuminance_dyn(
+        &mut self,
+        e: &mut Exec<F>,
+        category: &str,
+        p: Vec3<F>,
+        cone: Option<(Vec3<F>, F)>,
+        body: &mut dyn FnMut(&mut Exec<F>, Vec3<F>, Color<F>),
+    );
+    /// [`ShadingContext::ambient`].
+    fn ambient_dyn(&mut self, e: &Exec<F>) -> Color<F>;
+    /// [`ShadingContext::trace`].
+    fn trace_dyn(&mut self, e: &Exec<F>, p: Vec3<F>, dir: Vec3<F>) -> Color<F>;
+    /// [`ShadingContext::lights_as_data`].
+    fn lights_as_data_dyn(&self) -> Option<&[LightData]>;
+}
+
+impl<F: ShadingFloat, C: ShadingContext<F>> ErasedContext<F> for C {
+    fn globals_dyn(&self) -> &Globals<F> {
+        self.globals()
+    }
+    fn illuminance_dyn(
+        &mut self,
+        e: &mut Exec<F>,
+        category: &str,
+        p: Vec3<F>,
+        cone: Option<(Vec3<F>, F)>,
+        body: &mut dyn FnMut(&mut Exec<F>, Vec3<F>, Color<F>),
+    ) {
+        self.illuminance(e, category, p, cone, body);
+    }
+    fn ambient_dyn(&mut self, e: &Exec<F>) -> Color<F> {
+        self.ambient(e)
+    }
+    fn trace_dyn(&mut self, e: &Exec<F>, p: Vec3<F>, dir: Vec3<F>) -> Color<F> {
+        self.trace(e, p, dir)
+    }
+    fn lights_as_data_dyn(&self) -> Option<&[LightData]> {
+        self.lights_as_data()
+    }
+}
+
+/// Any [`ShadingContext`] behind one type: a `ShadingContext` that forwards to an
+/// [`ErasedContext`] object.
+pub struct Erased<'a, F: ShadingFloat>(pub &'a mut dyn ErasedContext<F>);
+
+impl<F: ShadingFloat> ShadingContext<F> for Erased<'_, F> {
+    fn globals(&self) -> &Globals<F> {
+        self.0.globals_dyn()
+    }
+    fn illuminance<B: FnMut(&mut Exec<F>, Vec3<F>, Color<F>)>(
+        &mut self,
+        e: &mut Exec<F>,
+        category: &str,
+        p: Vec3<F>,
+        cone: Option<(Vec3<F>, F)>,
+        mut body: B,
+    ) {
+        self.0.illuminance_dyn(e, category, p, cone, &mut body);
+    }
+    fn ambient(&mut self, e: &Exec<F>) -> Color<F> {
+        self.0.ambient_dyn(e)
+    }
+    fn trace(&mut self, e: &Exec<F>, p: Vec3<F>, dir: Vec3<F>) -> Color<F> {
+        self.0.trace_dyn(e, p, dir)
+    }
+    fn lights_as_data(&self) -> Option<&[LightData]> {
+        self.0.lights_as_data_dyn()
+    }
+}
+
 /// The light loop every context shares: evaluates each light shader at `p`, keeps the lanes
 /// inside the illuminance cone, asks `visibility` for shadowing (`None` = unshadowed) and runs
 /// `body` with `L` reversed to point from the surface to the light.

@@ -909,6 +909,13 @@ pub fn rt_table<F: JitFloat>() -> [RtFn; 5] {
 /// values shaders use, a copy of the function compiled for that one `aux` (no dispatch on
 /// it at run time, and only that variant's stack frame); for the rest, the general function
 /// of [`rt_table`].
+///
+/// The copies exist for the 8- and 16-lane float types only (`F32x8`, `F32x16`, and so the
+/// multi-packet variants, which call them per packet): those are the variants whose speed is
+/// measured against the compiled build, and where a call's fixed cost is a large share of
+/// its time. Each copy inlines its whole kernel (noise above all), so copies for all six
+/// float types were most of this crate's build time (332 s of a 14-minute cold release
+/// build; 130 s with the two).
 #[must_use]
 pub fn rt_addr<F: JitFloat>(kind: RtKind, aux: u32) -> usize {
     // `k!(f, [c…])` returns `f::<F, c>` when `aux == c`.
@@ -955,42 +962,45 @@ pub fn rt_addr<F: JitFloat>(kind: RtKind, aux: u32) -> usize {
             )
         };
     }
+    // `if const`: the copies are not even instantiated for the other types.
     #[allow(clippy::identity_op)]
-    match kind {
-        RtKind::Un => k!(rt_un_k, aux, [0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17]),
-        RtKind::Bin => k!(rt_bin_k, aux, [0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11]),
-        RtKind::Geo => {
-            k!(rt_geo_k, aux, [0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19, 20, 21, 22]);
-        }
-        RtKind::Noise => {
-            noise!(nkind::NOISE);
-            noise!(nkind::SNOISE);
-            noise!(nkind::CELL);
-            noise!(nkind::PNOISE);
-            noise!(nkind::PSNOISE);
-            fractal!(nkind::FBM);
-            fractal!(nkind::TURBULENCE);
-        }
-        RtKind::Spline => {
-            let bw = aux >> 8;
-            k!(
-                rt_spline_k,
-                bw,
-                [
-                    0 | 1 << 8,
-                    1 | 1 << 8,
-                    2 | 1 << 8,
-                    3 | 1 << 8,
-                    4 | 1 << 8,
-                    5 | 1 << 8,
-                    0 | 3 << 8,
-                    1 | 3 << 8,
-                    2 | 3 << 8,
-                    3 | 3 << 8,
-                    4 | 3 << 8,
-                    5 | 3 << 8,
-                ]
-            );
+    if const { F::LANES >= 8 && !F::DUAL } {
+        match kind {
+            RtKind::Un => k!(rt_un_k, aux, [0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17]),
+            RtKind::Bin => k!(rt_bin_k, aux, [0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11]),
+            RtKind::Geo => {
+                k!(rt_geo_k, aux, [0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19, 20, 21, 22]);
+            }
+            RtKind::Noise => {
+                noise!(nkind::NOISE);
+                noise!(nkind::SNOISE);
+                noise!(nkind::CELL);
+                noise!(nkind::PNOISE);
+                noise!(nkind::PSNOISE);
+                fractal!(nkind::FBM);
+                fractal!(nkind::TURBULENCE);
+            }
+            RtKind::Spline => {
+                let bw = aux >> 8;
+                k!(
+                    rt_spline_k,
+                    bw,
+                    [
+                        0 | 1 << 8,
+                        1 | 1 << 8,
+                        2 | 1 << 8,
+                        3 | 1 << 8,
+                        4 | 1 << 8,
+                        5 | 1 << 8,
+                        0 | 3 << 8,
+                        1 | 3 << 8,
+                        2 | 3 << 8,
+                        3 | 3 << 8,
+                        4 | 3 << 8,
+                        5 | 3 << 8,
+                    ]
+                );
+            }
         }
     }
     rt_table::<F>()[kind as usize] as usize
@@ -1037,8 +1047,11 @@ mod tests {
 
     #[test]
     fn specialized_runtime_functions_compute_what_the_general_ones_do() {
-        // Every specialized (kind, aux) against the general function on the same input.
-        let inp: Vec<f32> = (0..64).map(|k| 0.37 + 0.61 * k as f32).collect();
+        // Every specialized (kind, aux) against the general function on the same input, for
+        // 8 lanes (the copies exist for 8 and 16 lanes without derivatives).
+        type X = anysl_simd::F32x8;
+        let n = X::STRIDE;
+        let inp: Vec<f32> = (0..64 * n).map(|k| 0.37 + 0.61 * (k / n) as f32 + 0.001 * (k % n) as f32).collect();
         let mut cases: Vec<(RtKind, u32)> = Vec::new();
         cases.extend((0..18).map(|a| (RtKind::Un, a)));
         cases.extend((0..12).map(|a| (RtKind::Bin, a)));
@@ -1062,26 +1075,30 @@ mod tests {
         }
         let mut specialized = 0;
         for (kind, aux) in cases {
-            let general = rt_table::<f32>()[kind as usize];
-            let addr = rt_addr::<f32>(kind, aux);
+            // Other types have no copies: every call gets the general function.
+            assert_eq!(rt_addr::<f32>(kind, aux), rt_table::<f32>()[kind as usize] as usize);
+            assert_eq!(
+                rt_addr::<anysl_ad::Dual<X>>(kind, aux),
+                rt_table::<anysl_ad::Dual<X>>()[kind as usize] as usize
+            );
+            let general = rt_table::<X>()[kind as usize];
+            let addr = rt_addr::<X>(kind, aux);
             if addr != general as usize {
                 specialized += 1;
             }
             // SAFETY: `addr` is an `RtFn` (it comes from `rt_addr`).
             let f: RtFn = unsafe { core::mem::transmute::<usize, RtFn>(addr) };
-            let (mut a, mut b) = ([0f32; 16], [0f32; 16]);
+            let (mut a, mut b) = (vec![0f32; 16 * n], vec![0f32; 16 * n]);
             unsafe {
                 general(core::ptr::null_mut(), core::ptr::null(), inp.as_ptr(), a.as_mut_ptr(), aux);
                 f(core::ptr::null_mut(), core::ptr::null(), inp.as_ptr(), b.as_mut_ptr(), aux);
             }
-            assert_eq!(a.map(f32::to_bits), b.map(f32::to_bits), "{kind:?} aux {aux:#x}");
+            let bits = |v: &[f32]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            assert_eq!(bits(&a), bits(&b), "{kind:?} aux {aux:#x}");
         }
         assert!(specialized > 100, "only {specialized} calls have their own function");
         // A call without a specialized copy gets the general function.
-        assert_eq!(
-            rt_addr::<f32>(RtKind::Geo, geo::CTRANSFORM | 1 << 8),
-            rt_table::<f32>()[RtKind::Geo as usize] as usize
-        );
+        assert_eq!(rt_addr::<X>(RtKind::Geo, geo::CTRANSFORM | 1 << 8), rt_table::<X>()[RtKind::Geo as usize] as usize);
     }
 
     /// The runtime noise, whose kernel is inlined for types without derivatives, gives the

@@ -6,6 +6,7 @@ use crate::ir::{Const, Global, Module, ShaderKind};
 use anysl_core::exec::INTERVAL_LOOP_LIMIT;
 use anysl_core::prelude::*;
 use anysl_core::shader::{ParamError, ParamInfo, ParamType, ParamValue, ShaderMeta, Storage};
+use anysl_core::{Erased, ErasedContext};
 use std::any::Any;
 use std::cell::RefCell;
 use std::ops::Range;
@@ -668,6 +669,21 @@ pub fn run_batch<F: ShadingFloat, C: ShadingContext<F>>(
     ctxs: &mut [C],
     masks: &[F::Mask],
 ) -> Frame<F> {
+    // The executor reaches the contexts through `Erased`, so that it is compiled once per
+    // float type and not again for every context type that calls it.
+    if let [ctx] = ctxs {
+        return run_erased(p, params, &mut [Erased(ctx)], masks);
+    }
+    let mut erased: Vec<Erased<'_, F>> = ctxs.iter_mut().map(|c| Erased(c as &mut dyn ErasedContext<F>)).collect();
+    run_erased(p, params, &mut erased, masks)
+}
+
+fn run_erased<F: ShadingFloat>(
+    p: &Program,
+    params: &[Const],
+    ctxs: &mut [Erased<'_, F>],
+    masks: &[F::Mask],
+) -> Frame<F> {
     let n = ctxs.len();
     let mut fr = take_frame::<F>(p, n);
     for (i, loc) in p.params.iter().enumerate() {
@@ -996,7 +1012,7 @@ impl LightShader for InterpLight {
         }
         let mut mask = [e.mask()];
         fr.rets.push(vec![F::Mask::splat(false)]);
-        let mut run = Run { p, ctxs: std::slice::from_mut(&mut ctx) };
+        let mut run = Run { p, ctxs: &mut [Erased(&mut ctx)] };
         // `Cl` is zero for lanes outside every illuminate cone.
         exec_block(&mut fr, &mut run, &p.code, 0..1, &mut mask);
         let cl = match p.global_loc(Global::Cl) {
