@@ -912,10 +912,9 @@ pub fn rt_table<F: JitFloat>() -> [RtFn; 5] {
 ///
 /// The copies exist for the 8- and 16-lane float types only (`F32x8`, `F32x16`, and so the
 /// multi-packet variants, which call them per packet): those are the variants whose speed is
-/// measured against the compiled build, and where a call's fixed cost is a large share of
-/// its time. Each copy inlines its whole kernel (noise above all), so copies for all six
-/// float types were most of this crate's build time (332 s of a 14-minute cold release
-/// build; 130 s with the two).
+/// measured against the compiled build. Each copy inlines its whole kernel (noise above all),
+/// so every float type with copies adds about a minute to this crate's release build
+/// (docs/build.md, "Where the time goes"); the other types get the general functions.
 #[must_use]
 pub fn rt_addr<F: JitFloat>(kind: RtKind, aux: u32) -> usize {
     // `k!(f, [c…])` returns `f::<F, c>` when `aux == c`.
