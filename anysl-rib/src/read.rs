@@ -660,15 +660,7 @@ impl<'a, B: RibBuilder + ?Sized> Reader<'a, B> {
 
     fn error(&mut self, d: Diagnostic) {
         self.ctx.diags.push(d);
-        if self.ctx.diags.errors >= self.options.max_errors && !self.stopped {
-            self.stopped = true;
-            let loc = d_loc(&self.ctx.diags.items);
-            self.ctx.diags.items.push(Diagnostic::error(
-                codes::LIMIT,
-                loc,
-                format!("too many errors ({}); reading stops here", self.options.max_errors),
-            ));
-        }
+        self.check_errors();
     }
 
     fn flush_lex(&mut self, file: FileId, errs: &mut Vec<LexError>) {
