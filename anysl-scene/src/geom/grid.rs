@@ -172,8 +172,11 @@ fn normal_at<S: Surface + ?Sized>(
     let cross = |e: &Eval| {
         let (a, b) = (e.ds / scale.x, e.dt / scale.y);
         let c = a.cross(b);
-        // Relative test: a cross product tiny next to its factors is numerical noise.
-        (c.length() > 1e-7 * a.length() * b.length()).then_some(c).and_then(unit)
+        // Relative tests: a partial tiny next to the other one (a collapsed patch edge, whose
+        // partial is rounding noise in any direction), or a cross product tiny next to its
+        // factors, is degenerate.
+        let (la, lb) = (a.length(), b.length());
+        (la > 1e-6 * lb && lb > 1e-6 * la && c.length() > 1e-7 * la * lb).then_some(c).and_then(unit)
     };
     if let Some(n) = cross(e) {
         return Some(n);

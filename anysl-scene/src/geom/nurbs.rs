@@ -18,7 +18,7 @@ use super::patches::rational;
 use super::primvars::{self, Counts, POSITION_NAMES};
 use super::{err, Detail, Result, Tessellation};
 use anysl_rib::ParamList;
-use glam::{Vec2, Vec4};
+use glam::{DVec4, Vec2, Vec4};
 
 /// Highest order accepted (evaluation costs order² per point and direction).
 const MAX_ORDER: usize = 64;
@@ -144,7 +144,7 @@ impl Surface for NuSurface {
         self.u.basis(ku, x, &mut nu, &mut dnu);
         self.v.basis(kv, y, &mut nv, &mut dnv);
         let (pu, pv) = (self.u.order - 1, self.v.order - 1);
-        let (mut h, mut hs, mut ht) = (glam::DVec4::ZERO, glam::DVec4::ZERO, glam::DVec4::ZERO);
+        let (mut h, mut hs, mut ht) = (DVec4::ZERO, DVec4::ZERO, DVec4::ZERO);
         for j in 0..=pv {
             let row = (kv - pv + j) * self.u.n;
             for i in 0..=pu {
@@ -155,7 +155,7 @@ impl Surface for NuSurface {
             }
         }
         // Partials along the local (s, t): times the face widths.
-        rational(h.as_vec4(), (hs * wu).as_vec4(), (ht * wv).as_vec4())
+        rational(h, hs * wu, ht * wv)
     }
 
     fn uv(&self, fu: usize, fv: usize, s: f32, t: f32) -> (Vec2, Vec2) {

@@ -15,7 +15,7 @@ use super::grid::{self, bilinear, Eval, Surface};
 use super::primvars::{self, Counts, POSITION_NAMES};
 use super::{err, Detail, GeomError, Result, Tessellation};
 use anysl_rib::{Basis, ParamList};
-use glam::{Mat4, Vec2, Vec4};
+use glam::{DVec4, Mat4, Vec2, Vec4};
 
 /// Patch bases and steps, as set by `Basis` (default bezier 3 / bezier 3).
 ///
@@ -91,15 +91,18 @@ impl PatchBasis {
     }
 }
 
-/// Weights of the four control points at `x` and their derivatives, for basis matrix `m`.
+/// Weights of the four control points at `x` and their derivatives, for basis matrix `m`
+/// (in f64: at a collapsed patch edge the derivative is a sum that cancels, and f32 rounding
+/// would leave noise that looks like a direction).
 #[inline]
-pub(crate) fn cubic_weights(m: &Mat4, x: f32) -> ([f32; 4], [f32; 4]) {
+pub(crate) fn cubic_weights(m: &Mat4, x: f32) -> ([f64; 4], [f64; 4]) {
+    let x = x as f64;
     let pw = [x * x * x, x * x, x, 1.0];
     let dpw = [3.0 * x * x, 2.0 * x, 1.0, 0.0];
     let mut w = [0.0; 4];
     let mut dw = [0.0; 4];
     for k in 0..4 {
-        let r = m.row(k);
+        let r = m.row(k).as_dvec4().to_array();
         for i in 0..4 {
             w[i] += pw[k] * r[i];
             dw[i] += dpw[k] * r[i];
@@ -128,7 +131,7 @@ pub(crate) struct Mesh {
 impl Mesh {
     /// Weights and derivative weights along one direction, and the control-point indices.
     #[inline]
-    fn dir(&self, along_u: bool, face: usize, x: f32) -> ([f32; 4], [f32; 4], [usize; 4], usize) {
+    fn dir(&self, along_u: bool, face: usize, x: f32) -> ([f64; 4], [f64; 4], [usize; 4], usize) {
         let (m, step, n) = if along_u { (&self.bu, self.ustep, self.nu) } else { (&self.bv, self.vstep, self.nv) };
         let first = face * step;
         let idx = [0, 1, 2, 3].map(|k| (first + k) % n.max(1));
@@ -136,6 +139,7 @@ impl Mesh {
             let (w, dw) = cubic_weights(m, x);
             (w, dw, idx, 4)
         } else {
+            let x = x as f64;
             ([1.0 - x, x, 0.0, 0.0], [-1.0, 1.0, 0.0, 0.0], idx, 2)
         }
     }
@@ -149,11 +153,11 @@ impl Surface for Mesh {
     fn eval(&self, fu: usize, fv: usize, s: f32, t: f32) -> Eval {
         let (wu, dwu, iu, ku) = self.dir(true, fu, s);
         let (wv, dwv, iv, kv) = self.dir(false, fv, t);
-        let (mut h, mut hs, mut ht) = (Vec4::ZERO, Vec4::ZERO, Vec4::ZERO);
+        let (mut h, mut hs, mut ht) = (DVec4::ZERO, DVec4::ZERO, DVec4::ZERO);
         for j in 0..kv {
             let row = iv[j] * self.nu;
             for i in 0..ku {
-                let p = self.pts[row + iu[i]];
+                let p = self.pts[row + iu[i]].as_dvec4();
                 h += wu[i] * wv[j] * p;
                 hs += dwu[i] * wv[j] * p;
                 ht += wu[i] * dwv[j] * p;
@@ -196,7 +200,7 @@ impl Surface for Mesh {
         let (wv, _, iv, kv) = self.dir(false, fv, t);
         for j in 0..kv {
             for i in 0..ku {
-                out.push((iv[j] * self.nu + iu[i], wu[i] * wv[j]));
+                out.push((iv[j] * self.nu + iu[i], (wu[i] * wv[j]) as f32));
             }
         }
     }
@@ -211,9 +215,10 @@ impl Mesh {
 
 /// Point and partials from homogeneous sums: P = H/w, P' = (H' − P w')/w.
 #[inline]
-pub(crate) fn rational(h: Vec4, hs: Vec4, ht: Vec4) -> Eval {
+pub(crate) fn rational(h: DVec4, hs: DVec4, ht: DVec4) -> Eval {
     let p = h.truncate() / h.w;
-    Eval { p, ds: (hs.truncate() - p * hs.w) / h.w, dt: (ht.truncate() - p * ht.w) / h.w }
+    let (ds, dt) = ((hs.truncate() - p * hs.w) / h.w, (ht.truncate() - p * ht.w) / h.w);
+    Eval { p: p.as_vec3(), ds: ds.as_vec3(), dt: dt.as_vec3() }
 }
 
 /// `Patch type`: one `"bilinear"` (4 points) or `"bicubic"` (16 points) patch.
