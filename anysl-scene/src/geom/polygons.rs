@@ -194,7 +194,8 @@ fn build(
         let fv0 = fv_base;
         fv_base += nfv;
         let loops: Vec<Vec<DVec3>> = poly.loops.iter().map(|l| l.iter().map(|&i| points[i]).collect()).collect();
-        let Some(normal) = newell(&loops[0]).or_else(|| newell(&loops.concat())) else {
+        let normal = loops.first().and_then(|outer| newell(outer).or_else(|| newell(&loops.concat())));
+        let Some(normal) = normal else {
             skipped += 1;
             continue;
         };
