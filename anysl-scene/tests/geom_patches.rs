@@ -2,6 +2,9 @@
 //! interpolation, NuPatch against the bilinear patch and the rational quarter circle,
 //! varying/vertex counts of periodic meshes, partials against finite differences.
 
+// Tests index parallel per-vertex arrays.
+#![allow(clippy::needless_range_loop)]
+
 mod geom_util;
 
 use anysl_rib::{Basis, ParamList};

@@ -1,6 +1,9 @@
 //! Polygons: exact areas with holes and concave outlines, face normals and winding, the
 //! primitive-variable classes and the count errors.
 
+// Tests index parallel per-vertex arrays.
+#![allow(clippy::needless_range_loop)]
+
 mod geom_util;
 
 use anysl_rib::{Class, Decl, DeclOrigin, Loc, Param, ParamList, Type, Values};

@@ -2,6 +2,9 @@
 //! analytic gradient, sweep and z limits, u v at the spec's corners, partials against central
 //! finite differences of an independent f64 parametrization, chord error within tolerance.
 
+// Tests index parallel per-vertex arrays.
+#![allow(clippy::needless_range_loop)]
+
 use anysl_rib::ParamList;
 use anysl_scene::geom::{cone, cylinder, disk, hyperboloid, paraboloid, sphere, torus, Detail, Tessellation};
 use glam::{DVec3, Vec3};

@@ -1,5 +1,8 @@
 //! The teapot: 32 patches, the classic bounds, outward normals, nothing NaN.
 
+// Tests index parallel per-vertex arrays.
+#![allow(clippy::needless_range_loop)]
+
 mod geom_util;
 
 use anysl_scene::geom::{teapot, Detail, TEAPOT_PATCHES, TEAPOT_POINTS};

@@ -47,7 +47,8 @@ pub(crate) fn bilinear(s: f32, t: f32) -> [f32; 4] {
 /// Segments for a direction whose second derivative is bounded by `m`, for error `tol`.
 fn segments_for(m: f32, tol: f32, d: &Detail) -> u32 {
     let (lo, hi) = clamp_range(d);
-    if !(m > 0.0) {
+    // NaN too: no bound, no reason to cut finer.
+    if m.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
         return lo;
     }
     let n = (m / (8.0 * tol)).sqrt().ceil();

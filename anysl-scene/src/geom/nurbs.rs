@@ -202,9 +202,9 @@ impl Surface for NuSurface {
         self.u.basis(ku, x, &mut nu, &mut dnu);
         self.v.basis(kv, y, &mut nv, &mut dnv);
         let (pu, pv) = (self.u.order - 1, self.v.order - 1);
-        for j in 0..=pv {
-            for i in 0..=pu {
-                out.push(((kv - pv + j) * self.u.n + ku - pu + i, (nu[i] * nv[j]) as f32));
+        for (j, wv) in nv[..=pv].iter().enumerate() {
+            for (i, wu) in nu[..=pu].iter().enumerate() {
+                out.push(((kv - pv + j) * self.u.n + ku - pu + i, (wu * wv) as f32));
             }
         }
     }

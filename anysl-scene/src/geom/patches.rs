@@ -267,8 +267,8 @@ fn patches_along(request: &str, which: &str, bicubic: bool, n: usize, periodic: 
     let fit = match (bicubic, periodic) {
         (false, false) => (n >= 2).then(|| n - 1),
         (false, true) => (n >= 2).then_some(n),
-        (true, false) => (n >= 4 && (n - 4) % step == 0).then(|| (n - 4) / step + 1),
-        (true, true) => (n >= step.max(1) && n % step == 0).then(|| n / step),
+        (true, false) => (n >= 4 && (n - 4).is_multiple_of(step)).then(|| (n - 4) / step + 1),
+        (true, true) => (n >= step.max(1) && n.is_multiple_of(step)).then(|| n / step),
     };
     fit.filter(|&p| p > 0).ok_or_else(|| {
         let need = match (bicubic, periodic) {

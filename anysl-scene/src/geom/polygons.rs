@@ -22,7 +22,7 @@ use glam::{DVec2, DVec3};
 
 /// Polygons with more points than this are cut as a fan of their outer loop (with a warning):
 /// ear clipping costs O(n²) or worse.
-const MAX_EAR_CLIP_POINTS: usize = 2048;
+const MAX_EAR_CLIP_POINTS: usize = 1024;
 
 /// One polygon: its loops (outer first, then holes) as indices into "P".
 struct Poly {

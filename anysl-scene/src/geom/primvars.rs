@@ -54,7 +54,7 @@ pub(crate) fn check_count(request: &str, param: &Param, counts: &Counts) -> Resu
     let expected = items.saturating_mul(per);
     let n = param.values.len();
     let at_least = counts.vertex_at_least && matches!(param.decl.class, Class::Vertex | Class::Varying);
-    let ok = if at_least { n >= expected && n % per == 0 } else { n == expected };
+    let ok = if at_least { n >= expected && n.is_multiple_of(per) } else { n == expected };
     if !ok {
         return err(format!(
             "{request}: \"{}\" ({} {}) has {n} values, expected {}{expected} ({items} {} × {per})",
