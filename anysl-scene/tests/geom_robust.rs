@@ -174,3 +174,64 @@ proptest! {
         }
     }
 }
+
+/// A comb: `teeth` teeth of width 1 and height 10 on a base of height 1, gaps of width 1.
+fn comb(teeth: usize) -> (Vec<f32>, f64) {
+    let mut pts = vec![];
+    let w = (2 * teeth - 1) as f32;
+    pts.extend([0.0, 0.0, 0.0, w, 0.0, 0.0]);
+    for k in (0..teeth).rev() {
+        let x0 = (2 * k) as f32;
+        let x1 = x0 + 1.0;
+        pts.extend([x1, 11.0, 0.0, x0, 11.0, 0.0]);
+        if k > 0 {
+            pts.extend([x0, 1.0, 0.0, x0 - 1.0, 1.0, 0.0]);
+        }
+    }
+    // The right edge of the last tooth starts at the base's corner (w, 0) → (w, 11).
+    let area = w as f64 * 1.0 + teeth as f64 * 10.0;
+    (pts, area)
+}
+
+#[test]
+fn large_concave_polygons_are_exact_and_bounded() {
+    let d = Detail::default();
+    let loc = Loc { file: Default::default(), name: "p".into(), start: 0, end: 0, line: 1, col: 1 };
+    let p = |vals: Vec<f32>| ParamList {
+        params: vec![Param {
+            name: "P".into(),
+            decl: Decl::new(Class::Vertex, Type::Point),
+            origin: DeclOrigin::Predeclared,
+            values: Values::Float(vals),
+            loc: loc.clone(),
+        }],
+    };
+    // 254 teeth: 1018 points, ear clipped.
+    let (pts, area) = comb(254);
+    let n = pts.len() / 3;
+    let t = geom::general_polygon(&[n as i32], &p(pts), &d).unwrap();
+    assert!(t.warnings.is_empty(), "{:?}", t.warnings);
+    assert!((t.area() - area).abs() < 1e-6 * area, "area {} vs {area}", t.area());
+    assert_eq!(t.triangles.len(), n - 2);
+    // Beyond the ear-clipping limit: a fan, with a warning, still no panic.
+    let (pts, _) = comb(300);
+    let n = pts.len() / 3;
+    let t = geom::general_polygon(&[n as i32], &p(pts), &d).unwrap();
+    assert!(t.warnings[0].contains("cut as a fan"), "{:?}", t.warnings);
+    // A big bilinear mesh stays within the triangle budget.
+    let (nu, nv) = (300usize, 300usize);
+    let grid: Vec<f32> = (0..nu * nv).flat_map(|k| [(k % nu) as f32, (k / nu) as f32, 0.0]).collect();
+    let t = geom::patch_mesh(
+        "bilinear",
+        nu as i32,
+        "nonperiodic",
+        nv as i32,
+        "nonperiodic",
+        &PatchBasis::default(),
+        &p(grid),
+        &d,
+    )
+    .unwrap();
+    assert!(t.triangles.len() <= geom::MAX_TRIANGLES);
+    assert!((t.area() - ((nu - 1) * (nv - 1)) as f64).abs() < 1e-3);
+}
