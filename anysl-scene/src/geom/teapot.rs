@@ -1,12 +1,13 @@
 //! `Geometry "teapot"`: the Newell teapot as 32 bicubic Bézier patches.
 //!
-//! The data is Martin Newell's 1975 Utah teapot (public domain; the 306 control points and 32
-//! patches as published in Frank Crow's "The Origins of the Teapot", IEEE CG&A 1987, which
-//! adds the 4 bottom patches to Newell's 28; the same table ships with Aqsis and K-3D), in its
-//! original orientation: z up, the bottom at z = 0, the spout towards +x, the handle towards
-//! −x — as the RenderMan `Geometry "teapot"` of prman and BMRT. Each patch uses the Bézier
-//! basis with its own u, v in [0, 1] (u along a row of 4 control points, v across the rows);
-//! with that order the normals point out of the pot.
+//! The data is Martin Newell's 1975 Utah teapot, public domain: 306 control points and 32
+//! patches — Newell's 28 (rim, body, handle, spout, lid) plus the 4 bottom patches added
+//! later — in the table that circulates publicly (Frank Crow, "The Origins of the Teapot",
+//! IEEE CG&A 7(1), 1987, tells its history; the same table ships with Aqsis and K-3D). It is
+//! kept in its original orientation: z up, the bottom at z = 0, the spout towards +x, the
+//! handle towards −x, as the RenderMan `Geometry "teapot"` of prman and BMRT. Each patch uses
+//! the Bézier basis with its own u, v in [0, 1] (u along a row of 4 control points, v across
+//! the rows); with that order the normals point out of the pot.
 //!
 //! Surface bounds (from the tessellation, see the tests): x ∈ [−3.00, 3.43], y ∈ [−2.00, 2.00],
 //! z ∈ [0, 3.15].
