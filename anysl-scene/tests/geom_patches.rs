@@ -296,3 +296,45 @@ fn basis_names_and_matrices() {
     }
     let _ = ParamList::new();
 }
+
+/// De Casteljau on a 4 × 4 grid (u fastest), in f64: an evaluation independent of the crate's
+/// basis matrices.
+fn de_casteljau(ctrl: &[[f64; 3]], u: f64, v: f64) -> glam::DVec3 {
+    let curve = |p: [glam::DVec3; 4], t: f64| {
+        let l = |a: glam::DVec3, b: glam::DVec3| a + (b - a) * t;
+        let (a, b, c) = (l(p[0], p[1]), l(p[1], p[2]), l(p[2], p[3]));
+        let (d, e) = (l(a, b), l(b, c));
+        l(d, e)
+    };
+    let rows: Vec<glam::DVec3> =
+        (0..4).map(|j| curve([0, 1, 2, 3].map(|i| glam::DVec3::from(ctrl[j * 4 + i])), u)).collect();
+    curve([rows[0], rows[1], rows[2], rows[3]], v)
+}
+
+#[test]
+fn bicubic_chord_error_within_tolerance() {
+    let ctrl: Vec<[f64; 3]> =
+        (0..16).map(|k| [(k % 4) as f64, (k / 4) as f64, [0.0, 1.5, -1.0, 0.5][(k * 7 + k / 4) % 4]]).collect();
+    let pts: String = ctrl.iter().map(|p| format!("{} {} {}  ", p[0], p[1], p[2])).collect();
+    for tol in [1e-2f32, 1e-3] {
+        let d = Detail { tolerance: tol, min_segments: 1, max_segments: 512 };
+        let t = tessellate_all(&format!(r#"Patch "bicubic" "P" [{pts}]"#), &d).remove(0).unwrap();
+        let mut worst: f64 = 0.0;
+        for tri in &t.triangles {
+            let [a, b, c] = tri.map(|i| i as usize);
+            for w in [[0.5, 0.5, 0.0], [0.0, 0.5, 0.5], [0.5, 0.0, 0.5], [1.0 / 3.0; 3]] {
+                let uv = t.uv[a].as_dvec2() * w[0] + t.uv[b].as_dvec2() * w[1] + t.uv[c].as_dvec2() * w[2];
+                let on_tri = t.positions[a].as_dvec3() * w[0]
+                    + t.positions[b].as_dvec3() * w[1]
+                    + t.positions[c].as_dvec3() * w[2];
+                worst = worst.max((de_casteljau(&ctrl, uv.x, uv.y) - on_tri).length());
+            }
+        }
+        for i in 0..t.positions.len() {
+            let exact = de_casteljau(&ctrl, t.uv[i].x as f64, t.uv[i].y as f64);
+            assert!((exact - t.positions[i].as_dvec3()).length() < 1e-5);
+        }
+        assert!(worst <= tol as f64, "tolerance {tol}: chord error {worst}");
+        assert!(worst > tol as f64 / 20.0, "tolerance {tol}: chord error {worst} far below it (too fine)");
+    }
+}

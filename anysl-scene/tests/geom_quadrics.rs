@@ -287,6 +287,15 @@ fn pole_and_apex_normals_are_the_limits() {
             assert!((t.normals[i] + Vec3::Z).length() < 1e-3, "{}", t.normals[i]);
         }
     }
+    // The paraboloid's apex and the disk's centre: straight down and straight up.
+    for (t, n) in [(Q::Paraboloid(1.0, 0.0, 1.0, 360.0).run(&d), -Vec3::Z), (Q::Disk(0.0, 1.0, 360.0).run(&d), Vec3::Z)]
+    {
+        let apex: Vec<usize> = (0..t.positions.len()).filter(|&i| t.positions[i].truncate().length() < 1e-6).collect();
+        assert!(!apex.is_empty());
+        for i in apex {
+            assert!((t.normals[i] - n).length() < 1e-2, "{} vs {n}", t.normals[i]);
+        }
+    }
     // The cone's apex: the normal of the cone line through that u.
     let t = Q::Cone(1.0, 1.0, 360.0).run(&d);
     for i in 0..t.positions.len() {

@@ -183,7 +183,7 @@ fn normal_at<S: Surface + ?Sized>(
         return Some(n);
     }
     let toward = |x: f32, d: f32| if x < 0.5 { x + d } else { x - d };
-    for d in [1e-4f32, 1e-3, 1e-2] {
+    for d in [1e-6f32, 1e-5, 1e-4, 1e-3, 1e-2] {
         for (ss, tt) in [(s, toward(t, d)), (toward(s, d), t), (toward(s, d), toward(t, d))] {
             if let Some(n) = cross(&surf.eval(fu, fv, ss, tt)) {
                 return Some(n);
