@@ -181,3 +181,10 @@ fn degenerate_and_self_intersecting_polygons_do_not_panic() {
     check_consistent(&one(star));
     let _ = points_polygons;
 }
+
+#[test]
+fn np_is_the_polygon_normal() {
+    let t = one(r#"PointsPolygons [3 3] [0 1 2  0 2 3] "P" [0 0 0  1 0 0  1 1 0  0 1 0] "Np" [0 0 1  0 1 1]"#);
+    assert_eq!(&t.normals[..3], &[Vec3::Z; 3]);
+    assert!(t.normals[3..].iter().all(|n| (*n - Vec3::new(0.0, 1.0, 1.0).normalize()).length() < 1e-6));
+}

@@ -3,7 +3,7 @@
 //!
 //! A primitive says how many items each class needs ([`Counts`]) and, for each output vertex,
 //! which items it blends with which weights ([`Interp`]); this module does the rest for every
-//! primitive alike: `"N"` replaces the normals, `"Cs"`/`"Os"` fill the colour slots,
+//! primitive alike: `"N"` (or the per-polygon `"Np"`) replaces the normals, `"Cs"`/`"Os"` fill the colour slots,
 //! `"st"`, `"s"`, `"t"` the texture coordinates, and every other float variable becomes a
 //! [`PrimVar`].
 
@@ -120,7 +120,8 @@ pub(crate) fn apply(
         };
         let vals = interpolate(interp, param.decl.class, &values, per);
         match (param.name.as_str(), per) {
-            ("N", 3) => {
+            // "Np" is the uniform (per-polygon) normal of RI polygons.
+            ("N" | "Np", 3) => {
                 for (n, v) in t.normals.iter_mut().zip(vals.chunks_exact(3)) {
                     if let Some(u) = unit(Vec3::new(v[0], v[1], v[2])) {
                         *n = u;
