@@ -6,17 +6,27 @@ use glam::{Vec2, Vec3};
 use std::collections::HashMap;
 use std::fmt;
 
-/// An indexed triangle mesh; `normals` and `uvs` have one entry per position.
-#[derive(Clone, Debug, PartialEq)]
+/// An indexed triangle mesh; `normals` and `uvs` have one entry per position, and so has each
+/// optional per-vertex array that is present.
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct Mesh {
     /// Vertex positions (object space).
     pub positions: Vec<Vec3>,
     /// Unit vertex normals (object space).
     pub normals: Vec<Vec3>,
-    /// Texture coordinates `(s, t)`.
+    /// Surface parameters `(u, v)`; also the texture coordinates `(s, t)` unless `st` is given.
     pub uvs: Vec<Vec2>,
     /// Triangles as vertex indices, counter-clockwise seen from the front.
     pub triangles: Vec<[u32; 3]>,
+    /// Texture coordinates `(s, t)` when they differ from `(u, v)`.
+    pub st: Option<Vec<Vec2>>,
+    /// ∂P/∂u and ∂P/∂v of the exact surface (object space); without them they come from each
+    /// triangle's `(u, v)`.
+    pub dpdu_dpdv: Option<(Vec<Vec3>, Vec<Vec3>)>,
+    /// Per-vertex surface colour `Cs` (else the instance's colour).
+    pub cs: Option<Vec<[f32; 3]>>,
+    /// Per-vertex surface opacity `Os` (else the instance's opacity).
+    pub os: Option<Vec<[f32; 3]>>,
 }
 
 /// An OBJ file that could not be read: the file, the 1-based line and what was wrong.
@@ -55,7 +65,7 @@ impl Mesh {
     #[must_use]
     pub fn uv_sphere(radius: f32, segments: u32, rings: u32) -> Self {
         assert!(segments >= 3 && rings >= 2, "a UV sphere needs ≥ 3 segments and ≥ 2 rings");
-        let mut m = Mesh { positions: Vec::new(), normals: Vec::new(), uvs: Vec::new(), triangles: Vec::new() };
+        let mut m = Mesh::default();
         // One seam column is duplicated so that s runs continuously from 0 to 1.
         for r in 0..=rings {
             let t = r as f32 / rings as f32;
@@ -96,6 +106,7 @@ impl Mesh {
             normals: vec![Vec3::Y; 4],
             uvs: vec![Vec2::new(0.0, 0.0), Vec2::new(tiles, 0.0), Vec2::new(tiles, tiles), Vec2::new(0.0, tiles)],
             triangles: vec![[0, 2, 1], [0, 3, 2]],
+            ..Mesh::default()
         }
     }
 
@@ -208,6 +219,7 @@ impl Mesh {
             uvs: if have_uvs { keys.iter().map(|k| tex[k.1 as usize]).collect() } else { Vec::new() },
             positions,
             triangles,
+            ..Mesh::default()
         };
         if !have_normals {
             mesh.compute_smooth_normals(&keys.iter().map(|k| k.0).collect::<Vec<_>>());

@@ -6,10 +6,11 @@
 use crate::accel::{Accel, Hit, RayPacket, MAX_PACKET};
 use crate::camera::Camera;
 use crate::mesh::Mesh;
-use glam::{Mat4, Vec2, Vec3A};
+use glam::{Mat4, Vec2, Vec3, Vec3A};
 use std::fmt;
 
-/// A mesh placed in the world with a surface shader.
+/// A mesh placed in the world with a surface shader and the attributes RenderMan attaches to
+/// a primitive: its colour and opacity, one- or two-sidedness and orientation.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Instance {
     /// Index into the scene's meshes.
@@ -18,6 +19,25 @@ pub struct Instance {
     pub surface: usize,
     /// Object-to-world transform (glam convention: column vectors, `p' = M · p`).
     pub transform: Mat4,
+    /// `Cs` where the mesh has no per-vertex colours.
+    pub color: [f32; 3],
+    /// `Os` where the mesh has no per-vertex opacities.
+    pub opacity: [f32; 3],
+    /// Seen from both sides (RenderMan `Sides 2`); one-sided instances are invisible to
+    /// camera rays that meet their back (the side away from the shading normal).
+    pub two_sided: bool,
+    /// Turn the normals around (RenderMan orientation rules: `Orientation "inside"`,
+    /// `ReverseOrientation`, or a mirroring object-to-camera transform).
+    pub flip_normals: bool,
+}
+
+impl Instance {
+    /// Mesh `mesh` with surface shader `surface` placed by `transform`: white, opaque,
+    /// two-sided, normals as given.
+    #[must_use]
+    pub fn new(mesh: usize, surface: usize, transform: Mat4) -> Self {
+        Self { mesh, surface, transform, color: [1.0; 3], opacity: [1.0; 3], two_sided: true, flip_normals: false }
+    }
 }
 
 /// What rays that leave the scene see: a vertical gradient from `horizon` (direction
@@ -89,6 +109,17 @@ pub struct Scene<S, L> {
     positions: Vec<Vec3A>,
     normals: Vec<Vec3A>,
     uvs: Vec<Vec2>,
+    // Per vertex, each empty unless some mesh has it: s and t, ∂P/∂u, ∂P/∂v (zero where the
+    // triangle gives them), Cs and Os (the instance's where the mesh has none).
+    st: Vec<Vec2>,
+    dpdu: Vec<Vec3A>,
+    dpdv: Vec<Vec3A>,
+    cs: Vec<[f32; 3]>,
+    os: Vec<[f32; 3]>,
+    // Per instance: (Cs, Os) and whether it is one-sided.
+    instance_colors: Vec<([f32; 3], [f32; 3])>,
+    one_sided: Vec<bool>,
+    any_one_sided: bool,
     triangles: Vec<TriangleRef>,
     accel: Accel,
 }
@@ -107,6 +138,10 @@ impl<S, L> Scene<S, L> {
         lights: Vec<L>,
     ) -> Result<Self, SceneError> {
         let (mut positions, mut normals, mut uvs, mut triangles) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+        let used = |f: &dyn Fn(&Mesh) -> bool| instances.iter().any(|i| meshes.get(i.mesh).is_some_and(f));
+        let (with_st, with_dp) = (used(&|m| m.st.is_some()), used(&|m| m.dpdu_dpdv.is_some()));
+        let with_colors = used(&|m| m.cs.is_some() || m.os.is_some());
+        let (mut st, mut dpdu, mut dpdv, mut cs, mut os) = (Vec::new(), Vec::new(), Vec::new(), Vec::new(), Vec::new());
         for (k, inst) in instances.iter().enumerate() {
             let mesh = meshes
                 .get(inst.mesh)
@@ -114,22 +149,62 @@ impl<S, L> Scene<S, L> {
             if inst.surface >= surfaces.len() {
                 return Err(SceneError(format!("instance {k} uses surface {} of {}", inst.surface, surfaces.len())));
             }
-            if mesh.normals.len() != mesh.positions.len() || mesh.uvs.len() != mesh.positions.len() {
+            let count = mesh.positions.len();
+            if mesh.normals.len() != count || mesh.uvs.len() != count {
                 return Err(SceneError(format!(
                     "mesh {}: {} positions but {} normals and {} texture coordinates",
                     inst.mesh,
-                    mesh.positions.len(),
+                    count,
                     mesh.normals.len(),
                     mesh.uvs.len()
                 )));
             }
+            let lengths = [
+                ("s,t", mesh.st.as_ref().map(Vec::len)),
+                ("dPdu", mesh.dpdu_dpdv.as_ref().map(|d| d.0.len())),
+                ("dPdv", mesh.dpdu_dpdv.as_ref().map(|d| d.1.len())),
+                ("Cs", mesh.cs.as_ref().map(Vec::len)),
+                ("Os", mesh.os.as_ref().map(Vec::len)),
+            ];
+            if let Some((name, Some(n))) = lengths.iter().find(|(_, n)| n.is_some_and(|n| n != count)) {
+                return Err(SceneError(format!("mesh {}: {count} positions but {n} values of {name}", inst.mesh)));
+            }
             let base = positions.len() as u32;
             let normal_matrix = inst.transform.inverse().transpose();
+            let sign = if inst.flip_normals { -1.0 } else { 1.0 };
             positions.extend(mesh.positions.iter().map(|p| Vec3A::from(inst.transform.transform_point3(*p))));
             normals.extend(
-                mesh.normals.iter().map(|n| Vec3A::from(normal_matrix.transform_vector3(*n)).normalize_or_zero()),
+                mesh.normals
+                    .iter()
+                    .map(|n| Vec3A::from(normal_matrix.transform_vector3(*n)).normalize_or_zero() * sign),
             );
             uvs.extend_from_slice(&mesh.uvs);
+            if with_st {
+                st.extend_from_slice(mesh.st.as_deref().unwrap_or(&mesh.uvs));
+            }
+            if with_dp {
+                let world = |v: &Vec3| Vec3A::from(inst.transform.transform_vector3(*v));
+                match &mesh.dpdu_dpdv {
+                    Some((du, dv)) => {
+                        dpdu.extend(du.iter().map(world));
+                        dpdv.extend(dv.iter().map(world));
+                    }
+                    None => {
+                        dpdu.resize(positions.len(), Vec3A::ZERO);
+                        dpdv.resize(positions.len(), Vec3A::ZERO);
+                    }
+                }
+            }
+            if with_colors {
+                match &mesh.cs {
+                    Some(c) => cs.extend_from_slice(c),
+                    None => cs.resize(positions.len(), inst.color),
+                }
+                match &mesh.os {
+                    Some(o) => os.extend_from_slice(o),
+                    None => os.resize(positions.len(), inst.opacity),
+                }
+            }
             for tri in &mesh.triangles {
                 if tri.iter().any(|&i| i as usize >= mesh.positions.len()) {
                     return Err(SceneError(format!("mesh {}: triangle {tri:?} indexes past its vertices", inst.mesh)));
@@ -143,7 +218,71 @@ impl<S, L> Scene<S, L> {
         }
         let world: Vec<[Vec3A; 3]> = triangles.iter().map(|t| t.vertices.map(|i| positions[i as usize])).collect();
         let accel = Accel::build(&world);
-        Ok(Self { camera, surfaces, lights, sky: Sky::default(), instances, positions, normals, uvs, triangles, accel })
+        let instance_colors = instances.iter().map(|i| (i.color, i.opacity)).collect();
+        let one_sided: Vec<bool> = instances.iter().map(|i| !i.two_sided).collect();
+        let any_one_sided = one_sided.iter().any(|&b| b);
+        Ok(Self {
+            camera,
+            surfaces,
+            lights,
+            sky: Sky::default(),
+            instances,
+            positions,
+            normals,
+            uvs,
+            st,
+            dpdu,
+            dpdv,
+            cs,
+            os,
+            instance_colors,
+            one_sided,
+            any_one_sided,
+            triangles,
+            accel,
+        })
+    }
+
+    /// Whether the hit is on the back of a one-sided instance (the side away from its
+    /// shading normals, seen along `dir`).
+    #[inline]
+    fn culled(&self, hit: &Hit, dir: Vec3A) -> bool {
+        let tri = &self.triangles[hit.prim as usize];
+        self.one_sided[tri.instance as usize]
+            && tri.vertices.iter().map(|&i| self.normals[i as usize]).sum::<Vec3A>().dot(dir) > 0.0
+    }
+
+    /// [`Scene::intersect`] for camera rays: the backs of one-sided instances are passed
+    /// through.
+    #[inline]
+    #[must_use]
+    pub fn intersect_camera(&self, origin: Vec3A, dir: Vec3A, tmin: f32, tmax: f32) -> Option<Hit> {
+        let mut t0 = tmin;
+        loop {
+            let hit = self.intersect(origin, dir, t0, tmax)?;
+            if !self.any_one_sided || !self.culled(&hit, dir) || hit.t <= t0 {
+                return Some(hit);
+            }
+            t0 = hit.t;
+        }
+    }
+
+    /// [`Scene::intersect_packet`] for camera rays: the backs of one-sided instances are
+    /// passed through (those lanes are traced again one by one).
+    #[inline]
+    pub fn intersect_packet_camera(&self, rays: &RayPacket, out: &mut [Hit; MAX_PACKET]) -> u32 {
+        let mut bits = self.intersect_packet(rays, out);
+        if self.any_one_sided {
+            for (i, hit) in out.iter_mut().enumerate() {
+                if (bits >> i) & 1 != 0 && self.culled(hit, rays.dirs[i]) {
+                    match self.intersect_camera(rays.origins[i], rays.dirs[i], hit.t, rays.tmax[i]) {
+                        Some(h) => *hit = h,
+                        None => bits &= !(1 << i),
+                    }
+                }
+            }
+        }
+        bits
     }
 
     /// The instances.
@@ -207,6 +346,8 @@ impl<S, L> Scene<S, L> {
         let (uv0, uv1, uv2) = (self.uvs[i0], self.uvs[i1], self.uvs[i2]);
         let (b1, b2) = (hit.b1, hit.b2);
         let b0 = 1.0 - b1 - b2;
+        let (st0, st1, st2) =
+            if self.st.is_empty() { (uv0, uv1, uv2) } else { (self.st[i0], self.st[i1], self.st[i2]) };
         let e1 = p1 - p0;
         let e2 = p2 - p0;
         let p = p0 * b0 + p1 * b1 + p2 * b2;
@@ -218,6 +359,16 @@ impl<S, L> Scene<S, L> {
             ng = -ng;
         }
         let uv = uv0 * b0 + uv1 * b1 + uv2 * b2;
+        let st = st0 * b0 + st1 * b1 + st2 * b2;
+        let (cs, os) = if self.cs.is_empty() {
+            self.instance_colors[tri.instance as usize]
+        } else {
+            let mix = |c: &[[f32; 3]]| {
+                let (c0, c1, c2) = (Vec3A::from(c[i0]), Vec3A::from(c[i1]), Vec3A::from(c[i2]));
+                (c0 * b0 + c1 * b1 + c2 * b2).to_array()
+            };
+            (mix(&self.cs), mix(&self.os))
+        };
 
         // ∂P/∂u, ∂P/∂v from the triangle's (s, t) parameterization (pbrt's construction).
         let duv02 = uv0 - uv2;
@@ -225,7 +376,16 @@ impl<S, L> Scene<S, L> {
         let dp02 = p0 - p2;
         let dp12 = p1 - p2;
         let det = duv02.x * duv12.y - duv02.y * duv12.x;
-        let (dpdu, dpdv) = if det.abs() > 1e-12 {
+        let exact = if self.dpdu.is_empty() {
+            None
+        } else {
+            let du = self.dpdu[i0] * b0 + self.dpdu[i1] * b1 + self.dpdu[i2] * b2;
+            let dv = self.dpdv[i0] * b0 + self.dpdv[i1] * b1 + self.dpdv[i2] * b2;
+            (du.length_squared() > 0.0 || dv.length_squared() > 0.0).then_some((du, dv))
+        };
+        let (dpdu, dpdv) = if let Some(exact) = exact {
+            exact
+        } else if det.abs() > 1e-12 {
             let inv = 1.0 / det;
             ((dp02 * duv12.y - dp12 * duv02.y) * inv, (dp12 * duv02.x - dp02 * duv12.x) * inv)
         } else {
@@ -239,8 +399,12 @@ impl<S, L> Scene<S, L> {
             ng,
             i: p - origin,
             e: origin,
-            s: uv.x,
-            t: uv.y,
+            s: st.x,
+            t: st.y,
+            u: uv.x,
+            v: uv.y,
+            cs,
+            os,
             dpdu,
             dpdv,
             surface: tri.surface,
@@ -286,20 +450,28 @@ impl<S, L> Scene<S, L> {
             sh.dpdy = dpdy;
             sh.dndx = dnorm(dn1 * db1x + dn2 * db2x);
             sh.dndy = dnorm(dn1 * db1y + dn2 * db2y);
-            sh.dsdx = duv1.x * db1x + duv2.x * db2x;
-            sh.dsdy = duv1.x * db1y + duv2.x * db2y;
-            sh.dtdx = duv1.y * db1x + duv2.y * db2x;
-            sh.dtdy = duv1.y * db1y + duv2.y * db2y;
-            sh.du = sh.dsdx.abs().max(sh.dsdy.abs());
-            sh.dv = sh.dtdx.abs().max(sh.dtdy.abs());
+            let (dst1, dst2) = (st1 - st0, st2 - st0);
+            sh.dsdx = dst1.x * db1x + dst2.x * db2x;
+            sh.dsdy = dst1.x * db1y + dst2.x * db2y;
+            sh.dtdx = dst1.y * db1x + dst2.y * db2x;
+            sh.dtdy = dst1.y * db1y + dst2.y * db2y;
+            if self.st.is_empty() {
+                sh.du = sh.dsdx.abs().max(sh.dsdy.abs());
+                sh.dv = sh.dtdx.abs().max(sh.dtdy.abs());
+            } else {
+                let (dudx, dudy) = (duv1.x * db1x + duv2.x * db2x, duv1.x * db1y + duv2.x * db2y);
+                let (dvdx, dvdy) = (duv1.y * db1x + duv2.y * db2x, duv1.y * db1y + duv2.y * db2y);
+                sh.du = dudx.abs().max(dudy.abs());
+                sh.dv = dvdx.abs().max(dvdy.abs());
+            }
         }
         sh
     }
 }
 
 /// Everything a surface shader sees at one hit, in world space, plus the screen-space
-/// derivative seeds (zero for rays without differentials). `u`, `v` are the mesh's texture
-/// coordinates, like `s`, `t`.
+/// derivative seeds (zero for rays without differentials). `u`, `v` are the mesh's surface
+/// parameters; `s`, `t` its texture coordinates (the same unless the mesh has its own).
 /// `repr(C)`, every field 4-byte floats (or the `u32` shader index): the packet renderer
 /// transposes these records with vector shuffles.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -315,9 +487,9 @@ pub struct SurfaceHit {
     pub i: Vec3A,
     /// Ray origin.
     pub e: Vec3A,
-    /// Texture coordinate s (= u).
+    /// Texture coordinate s.
     pub s: f32,
-    /// Texture coordinate t (= v).
+    /// Texture coordinate t.
     pub t: f32,
     /// RSL `du`: the larger of |∂s/∂x|, |∂s/∂y|.
     pub du: f32,
@@ -343,6 +515,14 @@ pub struct SurfaceHit {
     pub dtdx: f32,
     /// ∂t/∂y.
     pub dtdy: f32,
+    /// Surface parameter u.
+    pub u: f32,
+    /// Surface parameter v.
+    pub v: f32,
+    /// Surface colour `Cs`.
+    pub cs: [f32; 3],
+    /// Surface opacity `Os`.
+    pub os: [f32; 3],
     /// Surface shader index.
     pub surface: u32,
 }

@@ -28,7 +28,7 @@ pub fn bunny_mesh() -> Mesh {
 pub fn table1<S, L>(surface: S, lights: Vec<L>, size: u32) -> Scene<S, L> {
     let camera = Camera::new(Vec3A::new(0.0, 0.0, 3.0), Vec3A::ZERO, Vec3A::Y, 2.0 * 0.375f32.atan(), size, size);
     let sphere = Mesh::uv_sphere(1.0, 64, 32);
-    let instances = vec![Instance { mesh: 0, surface: 0, transform: Mat4::IDENTITY }];
+    let instances = vec![Instance::new(0, 0, Mat4::IDENTITY)];
     Scene::new(camera, &[sphere], instances, vec![surface], lights).expect("the table-1 scene is well formed")
 }
 
@@ -51,24 +51,20 @@ pub fn gallery<S, L>(surfaces: Vec<S>, lights: Vec<L>, size: u32) -> Scene<S, L>
     for k in 0..10 {
         let (col, row) = ((k % 5) as f32, (k / 5) as f32);
         let centre = Vec3::new((col - 2.0) * 1.05, 0.4, -1.1 + row * 1.0);
-        instances.push(Instance {
-            mesh: 0,
-            surface: k,
-            transform: Mat4::from_scale_rotation_translation(Vec3::splat(0.4), Quat::IDENTITY, centre),
-        });
+        instances.push(Instance::new(
+            0,
+            k,
+            Mat4::from_scale_rotation_translation(Vec3::splat(0.4), Quat::IDENTITY, centre),
+        ));
     }
     let bunny_surface = if surfaces.len() > 10 { 10 } else { 0 };
     let ground_surface = if surfaces.len() > 11 { 11 } else { 9 };
-    instances.push(Instance {
-        mesh: 1,
-        surface: bunny_surface,
-        transform: Mat4::from_scale_rotation_translation(Vec3::splat(0.07), Quat::IDENTITY, Vec3::new(0.0, 0.0, 1.0)),
-    });
-    instances.push(Instance {
-        mesh: 2,
-        surface: ground_surface,
-        transform: Mat4::from_scale(Vec3::new(8.0, 1.0, 8.0)),
-    });
+    instances.push(Instance::new(
+        1,
+        bunny_surface,
+        Mat4::from_scale_rotation_translation(Vec3::splat(0.07), Quat::IDENTITY, Vec3::new(0.0, 0.0, 1.0)),
+    ));
+    instances.push(Instance::new(2, ground_surface, Mat4::from_scale(Vec3::new(8.0, 1.0, 8.0))));
     let mut scene = Scene::new(camera, &meshes, instances, surfaces, lights).expect("the gallery scene is well formed");
     scene.sky = Sky { visible_to_camera: true, ..Sky::default() };
     scene
@@ -84,6 +80,6 @@ pub fn bunny<S, L>(surface: S, lights: Vec<L>, size: u32) -> Scene<S, L> {
     let centre = (lo + hi) * 0.5;
     let transform = Mat4::from_scale(Vec3::splat(scale)) * Mat4::from_translation(-centre);
     let camera = Camera::new(Vec3A::new(0.6, 0.35, 2.2), Vec3A::new(0.0, -0.02, 0.0), Vec3A::Y, 0.55, size, size);
-    let instances = vec![Instance { mesh: 0, surface: 0, transform }];
+    let instances = vec![Instance::new(0, 0, transform)];
     Scene::new(camera, &[mesh], instances, vec![surface], lights).expect("the bunny scene is well formed")
 }

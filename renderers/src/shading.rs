@@ -234,8 +234,12 @@ pub fn gather_globals_read<F: ShadingFloat>(
         (GlobalSet::NG, at!(ng)),
         (GlobalSet::I, at!(i)),
         (GlobalSet::E, at!(e)),
-        (GlobalSet::S.union(GlobalSet::U), at!(s)),
-        (GlobalSet::T.union(GlobalSet::V), at!(t)),
+        (GlobalSet::S, at!(s)),
+        (GlobalSet::T, at!(t)),
+        (GlobalSet::U, at!(u)),
+        (GlobalSet::V, at!(v)),
+        (GlobalSet::CS, at!(cs)),
+        (GlobalSet::OS, at!(os)),
         (GlobalSet::DU, at!(du)),
         (GlobalSet::DV, at!(dv)),
         (GlobalSet::DPDU, at!(dpdu)),
@@ -272,9 +276,11 @@ pub fn gather_globals_read<F: ShadingFloat>(
     };
     let (p, n, i) = (pick3(GlobalSet::P, at!(p)), pick3(GlobalSet::N, at!(n)), pick3(GlobalSet::I, at!(i)));
     let st = |bits: GlobalSet, f: usize| if bits.0 & read.0 != 0 { ld(f) } else { F::c(0.0) };
-    let s = st(GlobalSet::S.union(GlobalSet::U), at!(s));
-    let t = st(GlobalSet::T.union(GlobalSet::V), at!(t));
+    let s = st(GlobalSet::S, at!(s));
+    let t = st(GlobalSet::T, at!(t));
     let (s, t) = (seed(s, at!(dsdx), at!(dsdy)), seed(t, at!(dtdx), at!(dtdy)));
+    let white = Color::c(1.0, 1.0, 1.0);
+    let color = |bit: GlobalSet, f: usize| if has(bit) { Color::new(ld(f), ld(f + 1), ld(f + 2)) } else { white };
     Globals {
         // The eye is fixed, so I = P − E changes like P.
         P: seed3(p, at!(dpdx), at!(dpdy)),
@@ -284,14 +290,14 @@ pub fn gather_globals_read<F: ShadingFloat>(
         E: pick3(GlobalSet::E, at!(e)),
         s,
         t,
-        u: s,
-        v: t,
+        u: st(GlobalSet::U, at!(u)),
+        v: st(GlobalSet::V, at!(v)),
         du: st(GlobalSet::DU, at!(du)),
         dv: st(GlobalSet::DV, at!(dv)),
         dPdu: pick3(GlobalSet::DPDU, at!(dpdu)),
         dPdv: pick3(GlobalSet::DPDV, at!(dpdv)),
-        Cs: Color::c(1.0, 1.0, 1.0),
-        Os: Color::c(1.0, 1.0, 1.0),
+        Cs: color(GlobalSet::CS, at!(cs)),
+        Os: color(GlobalSet::OS, at!(os)),
     }
 }
 

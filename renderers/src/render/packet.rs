@@ -241,6 +241,7 @@ where
         let mut hits = [SurfaceHit::default(); MAX_LANES];
         let mut found = [Hit { t: 0.0, prim: 0, b1: 0.0, b2: 0.0 }; MAX_PACKET];
         let mut dirs = [Vec3A::Z; MAX_LANES];
+        let mut origins = [Vec3A::ZERO; MAX_LANES];
         let mut out = [[0.0f32; MAX_LANES]; 3];
         let (mut band_ticks, mut band_points) = (0u64, 0u64);
         let tick_cost = if stats.is_some() { reading_cost() } else { 0 };
@@ -259,19 +260,20 @@ where
                 for k in 0..n * n {
                     let (ox, oy) = sample_offset(k, n);
                     // Trace the packet: all its rays through the BVH together.
-                    let o = cam.position();
                     let mut rays = RayPacket::default();
                     let mut differentials = [(Vec3A::ZERO, Vec3A::ZERO); MAX_LANES];
                     for lane in (0..packet_lanes).filter(|lane| (active >> lane) & 1 != 0) {
                         let (px, py) = lane_pixel(lane);
-                        let (d, ddx, ddy) = cam.ray_differential(px as f32 + ox, (y0 + py) as f32 + oy, footprint);
-                        dirs[lane] = d;
-                        differentials[lane] = (ddx, ddy);
-                        rays.set(lane, o, d, 0.0, f32::INFINITY);
+                        let ray = cam.primary_ray(px as f32 + ox, (y0 + py) as f32 + oy, footprint);
+                        dirs[lane] = ray.dir;
+                        origins[lane] = ray.origin;
+                        differentials[lane] = (ray.ddx, ray.ddy);
+                        rays.set(lane, ray.origin, ray.dir, ray.tmin, ray.tmax);
                     }
-                    let hit = scene.intersect_packet(&rays, &mut found);
+                    let hit = scene.intersect_packet_camera(&rays, &mut found);
                     for lane in (0..packet_lanes).filter(|lane| (hit >> lane) & 1 != 0) {
-                        hits[lane] = scene.surface_hit(&found[lane], o, dirs[lane], Some(differentials[lane]));
+                        hits[lane] =
+                            scene.surface_hit(&found[lane], origins[lane], dirs[lane], Some(differentials[lane]));
                     }
                     // A packet that hit nothing shows black where the sky is hidden from the
                     // camera: nothing to shade.

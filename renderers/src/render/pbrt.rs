@@ -100,10 +100,10 @@ where
             let mut acc = Vec3A::ZERO;
             for k in 0..n * n {
                 let (ox, oy) = sample_offset(k, n);
-                let o = cam.position();
-                let (d, ddx, ddy) = cam.ray_differential(x as f32 + ox, y as f32 + oy, footprint);
+                let ray = cam.primary_ray(x as f32 + ox, y as f32 + oy, footprint);
+                let (o, d, ddx, ddy) = (ray.origin, ray.dir, ray.ddx, ray.ddy);
                 acc += match integrator {
-                    Integrator::Active => li_active(tracer, filtered, o, d, (ddx, ddy)),
+                    Integrator::Active => li_active(tracer, filtered, o, d, (ddx, ddy), (ray.tmin, ray.tmax)),
                     Integrator::Passive => passive.li(o, d, Some((ddx, ddy)), 0, 0, true, &mut rng),
                 };
             }
@@ -119,10 +119,11 @@ fn li_active<S: SurfaceShader, L: LightShader>(
     o: Vec3A,
     d: Vec3A,
     diff: (Vec3A, Vec3A),
+    (tmin, tmax): (f32, f32),
 ) -> Vec3A {
     let scene = tracer.scene;
     let dirs = [d];
-    let hit = scene.intersect(o, d, 0.0, f32::INFINITY);
+    let hit = scene.intersect_camera(o, d, tmin, tmax);
     let hits = [hit.map(|h| scene.surface_hit(&h, o, d, Some(diff))).unwrap_or_default()];
     let lanes = Lanes { hits: &hits, dirs: &dirs, active: 1, hit: u32::from(hit.is_some()), camera: true };
     let c = shade_lanes_by::<f32, S, L, _>(tracer, &lanes, Depth::default(), how);
@@ -154,7 +155,12 @@ impl<S: SurfaceShader, L: LightShader> Passive<'_, S, L> {
     ) -> Vec3A {
         let scene = self.scene;
         let tmin = if camera && layer == 0 { 0.0 } else { ray_epsilon(o) };
-        let Some(hit) = scene.intersect(o, d, tmin, f32::INFINITY) else {
+        let found = if camera && layer == 0 {
+            scene.intersect_camera(o, d, tmin, f32::INFINITY)
+        } else {
+            scene.intersect(o, d, tmin, f32::INFINITY)
+        };
+        let Some(hit) = found else {
             return if camera && !scene.sky.visible_to_camera { Vec3A::ZERO } else { Vec3A::from(scene.sky.color(d)) };
         };
         let sh = scene.surface_hit(&hit, o, d, diff);

@@ -53,10 +53,10 @@ where
             let mut acc = [0.0f32; 3];
             for k in 0..n * n {
                 let (ox, oy) = sample_offset(k, n);
-                let o = cam.position();
-                let (d, ddx, ddy) = cam.ray_differential(x as f32 + ox, y as f32 + oy, footprint);
+                let ray = cam.primary_ray(x as f32 + ox, y as f32 + oy, footprint);
+                let (o, d, ddx, ddy) = (ray.origin, ray.dir, ray.ddx, ray.ddy);
                 let dirs = [d];
-                let c = match scene.intersect(o, d, 0.0, f32::INFINITY) {
+                let c = match scene.intersect_camera(o, d, ray.tmin, ray.tmax) {
                     None => {
                         let lanes = Lanes { hits: &[Default::default()], dirs: &dirs, active: 1, hit: 0, camera: true };
                         to_rgb(shade_lanes::<P, S, L>(tracer, &lanes, Depth::default()))

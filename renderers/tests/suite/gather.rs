@@ -37,6 +37,10 @@ fn hit(l: usize) -> SurfaceHit {
         dsdy: next(),
         dtdx: next(),
         dtdy: next(),
+        u: next(),
+        v: next(),
+        cs: [next(), next(), next()],
+        os: [next(), next(), next()],
         surface: l as u32,
     }
 }
@@ -60,8 +64,14 @@ fn check<F: ShadingFloat>(group: u32, read: GlobalSet) {
         assert_eq!(got3(&g.dPdu), want3(has(GlobalSet::DPDU), h.dpdu), "dPdu {what}");
         assert_eq!(got3(&g.dPdv), want3(has(GlobalSet::DPDV), h.dpdv), "dPdv {what}");
         let on = |x: GlobalSet, v: f32| if has(x) { v } else { 0.0 };
-        assert_eq!(g.s.lane(lane) as f32, on(GlobalSet::S.union(GlobalSet::U), h.s), "s {what}");
-        assert_eq!(g.t.lane(lane) as f32, on(GlobalSet::T.union(GlobalSet::V), h.t), "t {what}");
+        assert_eq!(g.s.lane(lane) as f32, on(GlobalSet::S, h.s), "s {what}");
+        assert_eq!(g.t.lane(lane) as f32, on(GlobalSet::T, h.t), "t {what}");
+        assert_eq!(g.u.lane(lane) as f32, on(GlobalSet::U, h.u), "u {what}");
+        assert_eq!(g.v.lane(lane) as f32, on(GlobalSet::V, h.v), "v {what}");
+        let white = |x: GlobalSet, c: [f32; 3]| if has(x) { c } else { [1.0; 3] };
+        let rgb = |c: &anysl_core::Color<F>| [c.r, c.g, c.b].map(|x| x.lane(lane) as f32);
+        assert_eq!(rgb(&g.Cs), white(GlobalSet::CS, h.cs), "Cs {what}");
+        assert_eq!(rgb(&g.Os), white(GlobalSet::OS, h.os), "Os {what}");
         assert_eq!(g.du.lane(lane) as f32, on(GlobalSet::DU, h.du), "du {what}");
         assert_eq!(g.dv.lane(lane) as f32, on(GlobalSet::DV, h.dv), "dv {what}");
         if F::HAS_DERIVS && has(GlobalSet::P) && has(GlobalSet::N) && has(GlobalSet::S) && has(GlobalSet::T) {

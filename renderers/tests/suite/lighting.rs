@@ -20,8 +20,8 @@ fn shadow_scene(ground: TestSurface, ball: TestSurface) -> Scene<TestSurface, Te
     let camera = Camera::new(Vec3A::new(0.0, 3.0, 4.0), Vec3A::new(0.0, 0.3, 0.0), Vec3A::Y, 0.9, 48, 48);
     let meshes = [Mesh::ground_quad(8.0, 4.0), Mesh::uv_sphere(0.5, 32, 16)];
     let instances = vec![
-        Instance { mesh: 0, surface: 0, transform: Mat4::IDENTITY },
-        Instance { mesh: 1, surface: 1, transform: Mat4::from_translation(Vec3::new(0.0, 1.0, 0.0)) },
+        Instance::new(0, 0, Mat4::IDENTITY),
+        Instance::new(1, 1, Mat4::from_translation(Vec3::new(0.0, 1.0, 0.0))),
     ];
     Scene::new(camera, &meshes, instances, vec![ground, ball], vec![TestLight::at([0.0, 6.0, 0.0], 1.0)]).unwrap()
 }
@@ -103,7 +103,7 @@ fn transparent_screen_lets_the_background_through() {
         let mut empty = Scene::new(
             clear.camera,
             &[Mesh::ground_quad(8.0, 4.0)],
-            vec![Instance { mesh: 0, surface: 0, transform: Mat4::IDENTITY }],
+            vec![Instance::new(0, 0, Mat4::IDENTITY)],
             vec![lambert.clone()],
             vec![TestLight::at([0.0, 6.0, 0.0], 1.0)],
         )
