@@ -15,4 +15,8 @@
 
 #![warn(missing_docs)]
 
+pub mod build;
+pub mod film;
 pub mod geom;
+pub mod render;
+pub mod shaders;
