@@ -18,7 +18,7 @@
 //! assert_eq!(pixels[8 * 16 + 8], [1.0, 0.0, 0.0, 1.0]);
 //! ```
 
-use crate::build::{Film, FrameDesc};
+use crate::build::{Film, FrameDesc, ShaderCall};
 use crate::film::{reconstruct, SampleWindow};
 use crate::shaders::{apply_params, standard_light, ShaderLibrary};
 use anysl_core::SurfaceShader;
@@ -34,12 +34,37 @@ pub struct Surfaces<S> {
     pub library: ShaderLibrary,
     make: Box<dyn FnMut(anysl_rsl::ir::Module) -> Result<S, String>>,
     cache: HashMap<String, S>,
+    /// Shaders of earlier frames with their parameters set (and, for the JIT, compiled),
+    /// handed back by [`Surfaces::keep`] for the next frame to reuse.
+    kept: Vec<(ShaderCall, S)>,
 }
 
 impl<S: SurfaceShader + Clone> Surfaces<S> {
     /// Shaders made by `make` from each shader's compiled module.
     pub fn new(library: ShaderLibrary, make: impl FnMut(anysl_rsl::ir::Module) -> Result<S, String> + 'static) -> Self {
-        Self { library, make: Box::new(make), cache: HashMap::new() }
+        Self { library, make: Box::new(make), cache: HashMap::new(), kept: Vec::new() }
+    }
+
+    /// Hands back the surface shaders of a rendered frame (`frame.surfaces` in order), so a
+    /// later frame with the same shader and parameters reuses them as they are (a JIT
+    /// shader's compiled code included).
+    pub fn keep(&mut self, frame: &FrameDesc, shaders: Vec<S>) {
+        for (call, s) in frame.surfaces.iter().zip(shaders) {
+            if !self.kept.iter().any(|(c, _)| c.same_as(call)) {
+                self.kept.push((call.clone(), s));
+            }
+        }
+    }
+
+    /// The shader for `call`: a kept one with the same parameters, else a fresh instance with
+    /// the parameters set (and the warnings that gave).
+    fn for_call(&mut self, call: &ShaderCall) -> Result<(S, Vec<String>), String> {
+        if let Some(k) = self.kept.iter().position(|(c, _)| c.same_as(call)) {
+            return Ok((self.kept.swap_remove(k).1, Vec::new()));
+        }
+        let mut s = self.instance(&call.name)?;
+        let warnings = apply_params(&mut s, call);
+        Ok((s, warnings))
     }
 
     /// A fresh instance of shader `name` with its defaults.
@@ -90,8 +115,8 @@ pub fn frame_scene<S: SurfaceShader + Clone>(
     let mut warnings = Vec::new();
     let mut shaders = Vec::with_capacity(frame.surfaces.len());
     for call in &frame.surfaces {
-        let mut s = surfaces.instance(&call.name)?;
-        warnings.extend(apply_params(&mut s, call));
+        let (s, w) = surfaces.for_call(call)?;
+        warnings.extend(w);
         shaders.push(s);
     }
     let mut lights = Vec::new();

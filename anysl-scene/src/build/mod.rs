@@ -296,7 +296,10 @@ impl SceneBuilder {
             None => pixel,
         };
         let tolerance = (0.25 * world_pixel / scale.max(1e-12)).clamp(1e-6, 1e6);
-        Detail { tolerance, min_segments: 4, max_segments: 1024 }
+        // At most about half a segment per pixel of the image's larger side (a singular
+        // surface, such as a paraboloid's apex, would otherwise take the most segments).
+        let max_segments = (w.max(h) / 2).clamp(64, 1024);
+        Detail { tolerance, min_segments: 4, max_segments }
     }
 
     fn current_object_to_world(&self) -> Mat4 {
