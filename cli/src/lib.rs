@@ -10,6 +10,7 @@ mod kernels;
 mod native;
 mod render;
 mod report;
+mod rib;
 mod rslc;
 mod table1;
 mod workload;

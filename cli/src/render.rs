@@ -72,6 +72,22 @@ pub fn shader_choices() -> Vec<&'static str> {
 /// Options of `anysl render`.
 #[derive(Args, Debug, Clone)]
 pub struct RenderArgs {
+    /// A RenderMan scene file (`.rib` or `.rib.gz`) to render instead of a preset: every frame
+    /// (or those of `--frame`/`--frames`), each `Display` written into `--out-dir`.
+    #[arg(value_name = "SCENE.rib")]
+    pub scene_file: Option<PathBuf>,
+    /// Where a RIB scene's displays are written (default: the current directory).
+    #[arg(long, value_name = "DIR")]
+    pub out_dir: Option<PathBuf>,
+    /// Render only frame N of a RIB scene (its `FrameBegin` number).
+    #[arg(long, value_name = "N", conflicts_with = "frames")]
+    pub frame: Option<i32>,
+    /// Render only frames A to B of a RIB scene (`FrameBegin` numbers, inclusive).
+    #[arg(long, value_name = "A-B")]
+    pub frames: Option<String>,
+    /// Add a shader search and `#include` directory (repeatable).
+    #[arg(short = 'I', value_name = "DIR")]
+    pub include: Vec<PathBuf>,
     /// Scene preset.
     #[arg(long, value_enum, default_value_t = SceneName::Table1)]
     pub scene: SceneName,
@@ -91,9 +107,10 @@ pub struct RenderArgs {
     /// SIMD width of the packet renderer (rays per packet, shaded together).
     #[arg(long, default_value = "8", value_parser = clap::builder::PossibleValuesParser::new(["4", "8", "16"]))]
     pub lanes: String,
-    /// Image width in pixels (table1 and bunny are square, the gallery 16:9).
-    #[arg(long, default_value_t = 512, value_parser = clap::value_parser!(u32).range(1..=16384))]
-    pub size: u32,
+    /// Image width in pixels (table1 and bunny are square, the gallery 16:9; default 512). For
+    /// a RIB scene: render at this width with the scene's aspect (default: its `Format`).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=16384))]
+    pub size: Option<u32>,
     /// Samples per pixel (a √spp × √spp stratified grid).
     #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=4096))]
     pub spp: u32,
@@ -110,6 +127,14 @@ pub struct RenderArgs {
     /// Cast no shadow rays (the paper's Table-1 workload has none).
     #[arg(long)]
     pub no_shadows: bool,
+}
+
+impl RenderArgs {
+    /// The image width of a preset: `--size`, else 512.
+    #[must_use]
+    pub fn preset_size(&self) -> u32 {
+        self.size.unwrap_or(512)
+    }
 }
 
 /// Sets `NAME=VALUE` parameters on `surfaces`: each name must exist on at least one of them
@@ -264,9 +289,9 @@ fn render_loaded<S: SurfaceShader + Clone>(
     apply_params_to(&mut surface, &args.params)?;
     let lights = table1_lights();
     let scene = match args.scene {
-        SceneName::Table1 => scenes::table1(surface, lights, args.size),
-        SceneName::Bunny => scenes::bunny(surface, lights, args.size),
-        SceneName::Gallery => scenes::gallery(vec![surface; 12], lights, args.size),
+        SceneName::Table1 => scenes::table1(surface, lights, args.preset_size()),
+        SceneName::Bunny => scenes::bunny(surface, lights, args.preset_size()),
+        SceneName::Gallery => scenes::gallery(vec![surface; 12], lights, args.preset_size()),
     };
     Ok(render_any(&scene, args.renderer, lanes, opts))
 }
@@ -338,6 +363,9 @@ pub fn render_with<S: SurfaceShader>(
 
 /// `anysl render`.
 pub fn run(args: &RenderArgs) -> Result<(), String> {
+    if let Some(file) = &args.scene_file {
+        return crate::rib::run(file, args);
+    }
     let lanes: usize = args.lanes.parse().map_err(|_| format!("--lanes {}: expected 4, 8 or 16", args.lanes))?;
     let is_sl = args.shader.as_deref().is_some_and(|s| s.ends_with(".sl"));
     let default_backend = if is_sl && cfg!(feature = "jit") {
@@ -383,7 +411,7 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
     let start = Instant::now();
     let image = match (backend, args.shader.as_deref()) {
         (Backend::Aot, _) => {
-            let scene = build_scene(args.scene, aot_name.as_deref(), &args.params, args.size)?;
+            let scene = build_scene(args.scene, aot_name.as_deref(), &args.params, args.preset_size())?;
             render_with(&scene, args.renderer, lanes, &opts)
         }
         (b, shader) => render_backend(b, shader.unwrap_or("phong"), args, lanes, &opts)?,
