@@ -120,6 +120,9 @@ pub struct Scene<S, L> {
     instance_colors: Vec<([f32; 3], [f32; 3])>,
     one_sided: Vec<bool>,
     any_one_sided: bool,
+    /// Every surface is white and opaque (no vertex colours, every instance's `Cs` and `Os`
+    /// one): shaders get constant `Cs`/`Os` without reading them from the hit records.
+    pub(crate) all_white: bool,
     triangles: Vec<TriangleRef>,
     accel: Accel,
 }
@@ -221,6 +224,7 @@ impl<S, L> Scene<S, L> {
         let instance_colors = instances.iter().map(|i| (i.color, i.opacity)).collect();
         let one_sided: Vec<bool> = instances.iter().map(|i| !i.two_sided).collect();
         let any_one_sided = one_sided.iter().any(|&b| b);
+        let all_white = cs.is_empty() && instances.iter().all(|i| i.color == [1.0; 3] && i.opacity == [1.0; 3]);
         Ok(Self {
             camera,
             surfaces,
@@ -238,6 +242,7 @@ impl<S, L> Scene<S, L> {
             instance_colors,
             one_sided,
             any_one_sided,
+            all_white,
             triangles,
             accel,
         })

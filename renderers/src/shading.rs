@@ -530,7 +530,11 @@ impl<F: ShadingFloat, S: SurfaceShader, L: LightShader> SurfaceVisitor for Group
     fn visit<T: SurfaceShader>(self, shader: &T) -> Color<F> {
         let Self { tracer, lanes, group, first, depth, .. } = self;
         let tracer = *tracer;
-        let read = shader.globals_read();
+        let mut read = shader.globals_read();
+        if tracer.scene.all_white {
+            // White is what the gather gives for Cs and Os left unread.
+            read = GlobalSet(read.0 & !(GlobalSet::CS.0 | GlobalSet::OS.0));
+        }
         let mut ctx = SceneContext { globals: gather_globals_read::<F>(lanes.hits, group, first, read), tracer, depth };
         let mut e = Exec::with_mask(lane_mask::<F>(group));
         let out = shader.shade(&mut ctx, &mut e);
