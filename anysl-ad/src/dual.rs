@@ -334,6 +334,10 @@ impl<F: ShadingFloat> ShadingFloat for Dual<F> {
         self.val.floor_bits()
     }
     #[inline(always)]
+    fn lookup16(table: &[f32; 16], h: F::Bits) -> Self {
+        Self::constant(F::lookup16(table, h))
+    }
+    #[inline(always)]
     fn bits_to_unit(h: F::Bits) -> Self {
         Self::constant(F::bits_to_unit(h))
     }

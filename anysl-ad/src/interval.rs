@@ -431,6 +431,15 @@ impl<F: ShadingFloat> ShadingFloat for Interval<F> {
     fn floor_bits(self) -> IBits<F> {
         IBits::new(self.lo.floor_bits(), self.lo.floor().eq(self.hi.floor()))
     }
+    /// The table entry where the bits are known, the hull of the table elsewhere.
+    #[inline(always)]
+    fn lookup16(table: &[f32; 16], h: IBits<F>) -> Self {
+        let v = F::lookup16(table, h.bits());
+        let known = h.known();
+        let lo = table.iter().fold(f32::INFINITY, |a, &b| a.min(b));
+        let hi = table.iter().fold(f32::NEG_INFINITY, |a, &b| a.max(b));
+        Self { lo: F::select(known, v, F::c(f64::from(lo))), hi: F::select(known, v, F::c(f64::from(hi))) }
+    }
     /// The exact value where known, `[0, 1 - 2^-24]` (every possible value) elsewhere.
     #[inline(always)]
     fn bits_to_unit(h: IBits<F>) -> Self {

@@ -324,6 +324,11 @@ pub trait ShadingFloat:
     fn floor_bits(self) -> Self::Bits;
     /// `(h >> 8) · 2^-24`: the top 24 hash bits as a number in [0, 1), exact in f32.
     fn bits_to_unit(h: Self::Bits) -> Self;
+    /// `table[h & 15]` lane by lane: a 16-entry constant table held in registers (one
+    /// permute at 16 lanes, one two-table permute at 8 with AVX-512VL) — the noise gradients.
+    /// Dual numbers give constants (no derivatives); intervals the hull of the table where the
+    /// bits are not known.
+    fn lookup16(table: &[f32; 16], h: Self::Bits) -> Self;
     /// Converts integer lanes to floats (`(i32) h` as a float).
     fn bits_to_float_signed(h: Self::Bits) -> Self;
 
@@ -449,6 +454,10 @@ macro_rules! impl_scalar_float {
             #[inline(always)]
             fn c(v: f64) -> Self {
                 v as $t
+            }
+            #[inline(always)]
+            fn lookup16(table: &[f32; 16], h: u32) -> Self {
+                table[(h & 15) as usize] as $t
             }
             #[inline(always)]
             fn lane(self, _i: usize) -> f64 {

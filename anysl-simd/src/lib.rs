@@ -141,7 +141,7 @@ mod splat {
 macro_rules! simd_width {
     (
         $lanes:literal, $name:literal,
-        $F:ident($wf:ident), $M:ident, $U:ident($wu:ident), $wi:ident, $from_int:ident
+        $F:ident($wf:ident), $M:ident, $U:ident($wu:ident), $wi:ident, $from_int:ident, $lookup:ident
     ) => {
         #[doc = concat!("`", $lanes, "` f32 lanes (shading points) evaluated together; a [`ShadingFloat`].")]
         #[derive(Clone, Copy, Default, PartialEq)]
@@ -410,6 +410,10 @@ macro_rules! simd_width {
                 $U(wide::bytemuck::cast(math::floor_to_i32(self.0)))
             }
             #[inline(always)]
+            fn lookup16(table: &[f32; 16], h: $U) -> Self {
+                Self(math::$lookup(table, h.0))
+            }
+            #[inline(always)]
             fn bits_to_unit(h: $U) -> Self {
                 // h >> 8 < 2^24: exact as i32 and as f32.
                 let top: wide::$wi = wide::bytemuck::cast(h.0 >> 8);
@@ -616,6 +620,6 @@ macro_rules! simd_width {
     };
 }
 
-simd_width!(4, "f32x4", F32x4(f32x4), M32x4, U32x4(u32x4), i32x4, from_i32x4);
-simd_width!(8, "f32x8", F32x8(f32x8), M32x8, U32x8(u32x8), i32x8, from_i32x8);
-simd_width!(16, "f32x16", F32x16(f32x16), M32x16, U32x16(u32x16), i32x16, from_i32x16);
+simd_width!(4, "f32x4", F32x4(f32x4), M32x4, U32x4(u32x4), i32x4, from_i32x4, lookup16_x4);
+simd_width!(8, "f32x8", F32x8(f32x8), M32x8, U32x8(u32x8), i32x8, from_i32x8, lookup16_x8);
+simd_width!(16, "f32x16", F32x16(f32x16), M32x16, U32x16(u32x16), i32x16, from_i32x16, lookup16_x16);

@@ -255,6 +255,76 @@ fn rsqrt_estimate_x16(x: wide::f32x16) -> wide::f32x16 {
     }
 }
 
+/// `table[h & 15]` at 4 lanes: two 8-entry permutes (AVX2) and a blend on bit 3.
+#[inline(always)]
+pub(crate) fn lookup16_x4(table: &[f32; 16], h: wide::u32x4) -> wide::f32x4 {
+    #[cfg(all(target_arch = "x86_64", target_feature = "avx2"))]
+    // SAFETY: AVX2 is enabled; `__m128i` and `wide::u32x4` are four 32-bit lanes, the table
+    // halves are eight f32 each. `vpermps` reads index bits 2..0; the upper half of the
+    // widened index is never looked at (only the low four result lanes are kept).
+    unsafe {
+        let idx: arch::__m128i = core::mem::transmute(h);
+        let wide_idx = arch::_mm256_castsi128_si256(idx);
+        let lo = arch::_mm256_loadu_ps(table.as_ptr());
+        let hi = arch::_mm256_loadu_ps(table.as_ptr().add(8));
+        let a = arch::_mm256_castps256_ps128(arch::_mm256_permutevar8x32_ps(lo, wide_idx));
+        let b = arch::_mm256_castps256_ps128(arch::_mm256_permutevar8x32_ps(hi, wide_idx));
+        let bit3 = arch::_mm_castsi128_ps(arch::_mm_slli_epi32::<28>(idx));
+        return core::mem::transmute(arch::_mm_blendv_ps(a, b, bit3));
+    }
+    #[allow(unreachable_code)]
+    wide::f32x4::from(h.to_array().map(|i| table[(i & 15) as usize]))
+}
+
+/// `table[h & 15]` at 8 lanes: one two-table permute (AVX-512VL `vpermt2ps`), or two
+/// 8-entry permutes and a blend on bit 3 (AVX2).
+#[inline(always)]
+pub(crate) fn lookup16_x8(table: &[f32; 16], h: wide::u32x8) -> wide::f32x8 {
+    #[cfg(all(target_arch = "x86_64", target_feature = "avx512f", target_feature = "avx512vl"))]
+    // SAFETY: AVX-512F/VL are enabled; `__m256i` and `wide::u32x8` are eight 32-bit lanes;
+    // `vpermt2ps` reads index bits 3..0 (bit 3 picks the table half).
+    unsafe {
+        let lo = arch::_mm256_loadu_ps(table.as_ptr());
+        let hi = arch::_mm256_loadu_ps(table.as_ptr().add(8));
+        return core::mem::transmute(arch::_mm256_permutex2var_ps(lo, core::mem::transmute(h), hi));
+    }
+    #[cfg(all(
+        target_arch = "x86_64",
+        target_feature = "avx2",
+        not(all(target_feature = "avx512f", target_feature = "avx512vl"))
+    ))]
+    // SAFETY: AVX2 is enabled; `vpermps` reads index bits 2..0, `vblendvps` the sign bit.
+    unsafe {
+        let idx: arch::__m256i = core::mem::transmute(h);
+        let lo = arch::_mm256_loadu_ps(table.as_ptr());
+        let hi = arch::_mm256_loadu_ps(table.as_ptr().add(8));
+        let a = arch::_mm256_permutevar8x32_ps(lo, idx);
+        let b = arch::_mm256_permutevar8x32_ps(hi, idx);
+        let bit3 = arch::_mm256_castsi256_ps(arch::_mm256_slli_epi32::<28>(idx));
+        return core::mem::transmute(arch::_mm256_blendv_ps(a, b, bit3));
+    }
+    #[allow(unreachable_code)]
+    wide::f32x8::from(h.to_array().map(|i| table[(i & 15) as usize]))
+}
+
+/// `table[h & 15]` at 16 lanes: one permute (AVX-512F `vpermps`, index bits 3..0), or the
+/// 8-lane lookup on each half.
+#[inline(always)]
+pub(crate) fn lookup16_x16(table: &[f32; 16], h: wide::u32x16) -> wide::f32x16 {
+    #[cfg(all(target_arch = "x86_64", target_feature = "avx512f"))]
+    // SAFETY: AVX-512F is enabled; `__m512i`/`__m512` and the wide types are sixteen 32-bit lanes.
+    unsafe {
+        let t = arch::_mm512_loadu_ps(table.as_ptr());
+        return core::mem::transmute(arch::_mm512_permutexvar_ps(core::mem::transmute(h), t));
+    }
+    #[allow(unreachable_code)]
+    {
+        // SAFETY: without AVX-512, the 16-lane wide types are two 8-lane halves.
+        let hs: [wide::u32x8; 2] = unsafe { core::mem::transmute(h) };
+        unsafe { core::mem::transmute([lookup16_x8(table, hs[0]), lookup16_x8(table, hs[1])]) }
+    }
+}
+
 /// 1/√x, lane for lane `anysl_core::rsqrt_f32`: the estimate, one Newton step
 /// `y + y/2·(1 - (x·y)·y)`, the estimate where the step gives NaN, and (12-bit estimate only)
 /// subnormal inputs scaled by 2^24.

@@ -3,7 +3,7 @@
 //!
 //! `cargo test -p anysl-simd -- --nocapture` prints the measured accuracy per function.
 
-use anysl_core::stdlib::lattice_hash;
+use anysl_core::stdlib::{grad3, lattice_hash};
 use anysl_core::{Blend, Color, LatticeBits, Mask, ShadingFloat, Vec3};
 use anysl_simd::{
     pack, pack_color, pack_vec3, unpack, unpack_color, unpack_vec3, F32x16, F32x4, F32x8, Lanes, M32x16, M32x4, M32x8,
@@ -448,7 +448,32 @@ where
         for i in 0..N {
             assert_eq!(h.lane(i), lattice_hash(&[a[i], b[i]], 0x1234));
         }
+        // Table lookups by the low four bits (the high bits ignored), and the noise gradient
+        // against the workload's case analysis (§4.2) on every lane.
+        let table: [f32; 16] = core::array::from_fn(|i| i as f32 * 0.5 - 3.0);
+        let t = F::lookup16(&table, ua);
+        let (x, y, z) = (rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0));
+        let g = grad3::<F>(ua, F::c(f64::from(x)), F::c(f64::from(y)), F::c(f64::from(z)));
+        for i in 0..N {
+            assert_eq!(t.lane(i) as f32, table[(a[i] & 15) as usize]);
+            assert_eq!(g.lane(i) as f32, grad_cases(a[i], x, y, z), "grad3({:#x}) lane {i}", a[i]);
+            assert_eq!(grad3::<f32>(a[i], x, y, z), grad_cases(a[i], x, y, z));
+        }
     }
+}
+
+/// The workload's gradient (§4.2) as its case analysis.
+fn grad_cases(h: u32, x: f32, y: f32, z: f32) -> f32 {
+    let h = h & 15;
+    let u = if h < 8 { x } else { y };
+    let v = if h < 4 {
+        y
+    } else if h == 12 || h == 14 {
+        x
+    } else {
+        z
+    };
+    (if h & 1 == 0 { u } else { -u }) + (if h & 2 == 0 { v } else { -v })
 }
 
 fn pack_roundtrip<F: Lanes>() {

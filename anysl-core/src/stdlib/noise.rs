@@ -43,18 +43,26 @@ pub fn lattice_hash<B: LatticeBits>(c: &[B], seed: u32) -> B {
     finalize(h)
 }
 
-/// Perlin's 16-case gradient for 3D: `dot(g[h & 15], (x, y, z))`, with selects.
+/// Perlin's 16 gradients for 3D (12 cube-edge directions, four repeated), by component:
+/// `GRAD3[axis][h & 15]`.
+const GRAD3: [[f32; 16]; 3] = [
+    [1.0, -1.0, 1.0, -1.0, 1.0, -1.0, 1.0, -1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, -1.0, 0.0],
+    [1.0, 1.0, -1.0, -1.0, 0.0, 0.0, 0.0, 0.0, 1.0, -1.0, 1.0, -1.0, 1.0, -1.0, 1.0, -1.0],
+    [0.0, 0.0, 0.0, 0.0, 1.0, 1.0, -1.0, -1.0, 1.0, 1.0, -1.0, -1.0, 0.0, 1.0, 0.0, -1.0],
+];
+
+/// Perlin's 16-case gradient for 3D: `dot(g[h & 15], (x, y, z))`. The gradient's components
+/// come from three register lookups ([`ShadingFloat::lookup16`]: one permute each at 16
+/// lanes) in place of the eleven compares and selects of the case analysis. Two of the three
+/// components are ±1 and one is 0, so the dot product rounds once, as `±u ± v` does: the
+/// same value.
 #[inline(always)]
 #[must_use]
 pub fn grad3<F: ShadingFloat>(h: F::Bits, x: F, y: F, z: F) -> F {
-    let bit = |m: u32| (h & F::Bits::splat(m)).eq_mask(F::Bits::splat(0));
-    let h15 = h & F::Bits::splat(15);
-    let lt8 = bit(8);
-    let lt4 = bit(8) & bit(4);
-    let is12or14 = h15.eq_mask(F::Bits::splat(12)) | h15.eq_mask(F::Bits::splat(14));
-    let u = F::select(lt8, x, y);
-    let v = F::select(lt4, y, F::select(is12or14, x, z));
-    F::select(bit(1), u, -u) + F::select(bit(2), v, -v)
+    let gx = F::lookup16(&GRAD3[0], h);
+    let gy = F::lookup16(&GRAD3[1], h);
+    let gz = F::lookup16(&GRAD3[2], h);
+    gz.mul_add(z, gy.mul_add(y, gx * x))
 }
 
 /// Gradient for 4D: the 16 corners (±1, ±1, ±1, ±1) of the hypercube.

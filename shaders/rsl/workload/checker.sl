@@ -9,13 +9,14 @@
 /*
  * The illumination model of workload §3, written out (this file is self-contained, so that it
  * compiles from embedded text without an include path): the ambient light, then one light
- * loop over every light with L (surface to light, unnormalized) normalized, the normal used
- * as given (every hit faces the eye: no faceforward) and V = -normalize(I).
+ * loop over every light with L (surface to light, unnormalized) normalized. illum(P, N, V)
+ * of §3 takes the unit normal and the unit vector to the eye of §2 as they are: N as given
+ * (every hit faces the eye: no faceforward), V = -I; its result is Ci.
  */
 color workload_illum(color Ct; uniform float Ka, Kd, Ks, roughness)
 {
-    normal Nn = normalize(N);
-    vector V = -normalize(I);
+    normal Nn = N;
+    vector V = -I;
     color diff = 0;
     color spec = 0;
     illuminance (P) {
@@ -40,5 +41,5 @@ surface workload_checker(
     float q = floor(frequency * xcomp(P)) + floor(frequency * ycomp(P)) + floor(frequency * zcomp(P));
     color Ct = (mod(q, 2) == 1) ? oddcolor : evencolor;
     Oi = Os;
-    Ci = Os * workload_illum(Ct, Ka, Kd, Ks, roughness);
+    Ci = workload_illum(Ct, Ka, Kd, Ks, roughness);
 }

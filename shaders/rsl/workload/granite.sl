@@ -10,13 +10,14 @@
 /*
  * The illumination model of workload §3, written out (this file is self-contained, so that it
  * compiles from embedded text without an include path): the ambient light, then one light
- * loop over every light with L (surface to light, unnormalized) normalized, the normal used
- * as given (every hit faces the eye: no faceforward) and V = -normalize(I).
+ * loop over every light with L (surface to light, unnormalized) normalized. illum(P, N, V)
+ * of §3 takes the unit normal and the unit vector to the eye of §2 as they are: N as given
+ * (every hit faces the eye: no faceforward), V = -I; its result is Ci.
  */
 color workload_illum(color Ct; uniform float Ka, Kd, Ks, roughness)
 {
-    normal Nn = normalize(N);
-    vector V = -normalize(I);
+    normal Nn = N;
+    vector V = -I;
     color diff = 0;
     color spec = 0;
     illuminance (P) {
@@ -51,5 +52,5 @@ surface workload_granite(
     float t = clamp(contrast * turb, 0, 1);
     color Ct = darkcolor + (lightcolor - darkcolor) * t;
     Oi = Os;
-    Ci = Os * workload_illum(Ct, Ka, Kd, Ks, roughness);
+    Ci = workload_illum(Ct, Ka, Kd, Ks, roughness);
 }

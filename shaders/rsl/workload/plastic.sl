@@ -2,20 +2,21 @@
  * workload_plastic — shading workload §5(a) (shaders/assets/workload_ref/shading_workload.md),
  * the .sl twin of shaders/src/workload/surfaces.rs WorkloadPlastic: a constant surface colour
  * under the §3 model (Blinn exponent 1/roughness = 12.5).
- *   Ci = Os·(Cs'·(Ka·ambient() + Kd·diff) + Ks·spec), Oi = Os, Cs' = surfacecolor
+ *   Ci = Cs'·(Ka·ambient() + Kd·diff) + Ks·spec, Oi = Os, Cs' = surfacecolor
  * Noise-free; the other three add a pattern for Cs'.
  */
 
 /*
  * The illumination model of workload §3, written out (this file is self-contained, so that it
  * compiles from embedded text without an include path): the ambient light, then one light
- * loop over every light with L (surface to light, unnormalized) normalized, the normal used
- * as given (every hit faces the eye: no faceforward) and V = -normalize(I).
+ * loop over every light with L (surface to light, unnormalized) normalized. illum(P, N, V)
+ * of §3 takes the unit normal and the unit vector to the eye of §2 as they are: N as given
+ * (every hit faces the eye: no faceforward), V = -I; its result is Ci.
  */
 color workload_illum(color Ct; uniform float Ka, Kd, Ks, roughness)
 {
-    normal Nn = normalize(N);
-    vector V = -normalize(I);
+    normal Nn = N;
+    vector V = -I;
     color diff = 0;
     color spec = 0;
     illuminance (P) {
@@ -36,5 +37,5 @@ surface workload_plastic(
     uniform float roughness = 0.08;)
 {
     Oi = Os;
-    Ci = Os * workload_illum(surfacecolor, Ka, Kd, Ks, roughness);
+    Ci = workload_illum(surfacecolor, Ka, Kd, Ks, roughness);
 }

@@ -5,8 +5,9 @@ use anysl_core::prelude::*;
 
 /// §3: `Cs ⊙ (Ka·Ca + Kd·diff) + Ks·spec`, with `Ca = ambient()` and the two light sums of
 /// one `illuminance` loop (`diff = Σ Cl·max(N·L, 0)`, `spec = Σ Cl·(N·L > 0 ? max(N·H, 0)^e : 0)`,
-/// `e = 1/roughness`) — [`diffuse_specular`] computes exactly that. The normal is used as
-/// given (every hit faces the eye: no `faceforward`).
+/// `e = 1/roughness`) — [`diffuse_specular`] computes exactly that. `illum(P, N, V, …)` takes
+/// the unit normal and the unit vector to the eye of §2 as they are: `N` as given (every hit
+/// faces the eye: no `faceforward`), `V = -I`, and its result is `Ci`.
 #[inline(always)]
 fn illum<F: ShadingFloat, C: ShadingContext<F>>(
     ctx: &mut C,
@@ -15,12 +16,10 @@ fn illum<F: ShadingFloat, C: ShadingContext<F>>(
     [ka, kd, ks, roughness]: [f64; 4],
 ) -> SurfaceOutput<F> {
     let g = *ctx.globals();
-    let n = g.N.normalize();
-    let v = -g.I.normalize();
     let ca = ambient(ctx, e);
-    let (diff, spec) = diffuse_specular(ctx, e, n, v, F::c(roughness));
+    let (diff, spec) = diffuse_specular(ctx, e, g.N, -g.I, F::c(roughness));
     let c = cs * (ca * F::c(ka) + diff * F::c(kd)) + spec * F::c(ks);
-    SurfaceOutput { Ci: g.Os * c, Oi: g.Os }
+    SurfaceOutput { Ci: c, Oi: g.Os }
 }
 
 /// The workload's noise (§4.4): Perlin's improved noise with the table-free hash, unclamped.
