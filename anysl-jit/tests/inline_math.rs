@@ -192,3 +192,34 @@ fn starball_calls_no_library_transcendentals() {
         assert!(ir.contains(&format!("i64 {lanes} to")), "{v:?}: no std fallback for large arguments");
     }
 }
+
+/// `pow` at exponents `n/2` (binary powering in the library): constant exponents (uniform in
+/// the compiled code, powered under scalar branches) and varying ones mixed with other
+/// exponents, against the library's bits at every width.
+#[test]
+fn pow_at_half_integer_exponents_is_the_library_bit_for_bit() {
+    let jit = shader(
+        "powh",
+        "Ci = color(pow(s, 0.5), pow(s, 10), pow(s, 16.5)); Oi = color(pow(s, t), pow(s, 3), pow(s, 17));",
+    );
+    fn check<F: ShadingFloat>(jit: &JitShader) {
+        let exps = [0.0f32, 0.5, 1.0, 2.5, 10.0, 16.0, 16.5, 17.0, -2.0, 0.25, f32::NAN, 7.5];
+        let bases: Vec<f32> =
+            EDGES.iter().copied().chain((0..40).map(|i| i as f32 / 39.0)).chain([1e-3, 1e-12, 200.0]).collect();
+        for (k, chunk) in bases.chunks(F::LANES).enumerate() {
+            let mut s = vec![0.5f32; F::LANES];
+            s[..chunk.len()].copy_from_slice(chunk);
+            let t: Vec<f32> = (0..F::LANES).map(|l| exps[(k + l) % exps.len()]).collect();
+            let lanes = |v: &[f32]| F::from_lanes(&v.iter().map(|&x| f64::from(x)).collect::<Vec<_>>());
+            let (x, y) = (lanes(&s), lanes(&t));
+            let want =
+                [x.pow(F::c(0.5)), x.pow(F::c(10.0)), x.pow(F::c(16.5)), x.pow(y), x.pow(F::c(3.0)), x.pow(F::c(17.0))];
+            for (c, (g, w)) in shade::<F>(jit, &s, &t).iter().zip(&want).enumerate() {
+                assert!(same(*g, *w), "{} output {c}: s = {s:?}, t = {t:?}", F::NAME);
+            }
+        }
+    }
+    check::<F32x4>(&jit);
+    check::<F32x8>(&jit);
+    check::<F32x16>(&jit);
+}

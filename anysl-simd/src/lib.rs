@@ -78,7 +78,7 @@ pub use soa::{pack, pack_color, pack_vec3, unpack, unpack_color, unpack_vec3, La
 pub mod kernel_consts {
     pub use crate::math::{
         ASIN_A, ATAN_P, COS_C, EXP2_Q, FRAC_2_PI, LN2_HI16, LN2_LO16, LOG2E_HI, LOG2E_LO, LOG2_Q, LOG_L, PIO2_1,
-        PIO2_2, PIO2_3, PIO2_LO, PI_HI, PI_LO, SIN_S, SQRT_HALF_BITS, TAN_T, TRIG_VECTOR_LIMIT,
+        PIO2_2, PIO2_3, PIO2_LO, PI_HI, PI_LO, POW_HALVES_MIN, SIN_S, SQRT_HALF_BITS, TAN_T, TRIG_VECTOR_LIMIT,
     };
     /// The kernels' `fma` is one fused operation (a build with FMA); without FMA, `wide`
     /// computes `a·b + c` with two roundings.

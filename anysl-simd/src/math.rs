@@ -88,6 +88,8 @@ pub(crate) trait Wide:
     fn all(self) -> bool;
     /// Replaces the lanes selected by `m` with `f(lane)` (slow path, not vectorized).
     fn map_where(self, m: Self, f: fn(f32) -> f32) -> Self;
+    /// Lane 0.
+    fn first(self) -> f32;
 }
 
 /// Implements [`Wide`] for a `wide` float type and its integer twin.
@@ -183,6 +185,10 @@ macro_rules! impl_wide {
             #[inline(always)]
             fn all(self) -> bool {
                 wide::$f::all(self)
+            }
+            #[inline(always)]
+            fn first(self) -> f32 {
+                self.as_array()[0]
             }
             #[cold]
             #[inline(never)]
@@ -673,6 +679,113 @@ fn pow_mag<W: Wide>(ax: W, y: W) -> W {
 /// parity of integer y for negative x.
 #[inline(always)]
 pub(crate) fn pow<W: Wide>(x: W, y: W) -> W {
+    // Shininess exponents: a base in [+0, inf) under an exponent in {0, 1/2, 1, …, 16} is
+    // computed by binary powering (and a square root for the half) where that result is in
+    // [2^-100, inf) or the base is 0; the other lanes (and vectors without such a lane) take
+    // the exponential of the logarithm. Each lane's path depends on its own (x, y) only; an
+    // exponent the same in every lane (a uniform shader parameter) steers the powering by
+    // scalar branches, with the same operations per lane.
+    let y0 = y.first();
+    let n0 = y0 + y0;
+    let (r, halves) = if (0.0..=32.0).contains(&n0) && n0.round_ties_even() == n0 && y.eq(W::splat(y0)).all() {
+        (pow_halves_uniform(x, n0 as u32), k::<W>(0.0).le(k(0.0)))
+    } else {
+        let n2 = y + y;
+        let halves = k::<W>(0.0).le(n2) & n2.le(k(32.0)) & n2.round_even().eq(n2);
+        if !halves.any() {
+            return pow_exp_log(x, y);
+        }
+        (pow_halves(x, n2), halves)
+    };
+    let sign_clear = W::eq_i(x.bits() >> 31, W::splat_i(0));
+    let in_range = k::<W>(POW_HALVES_MIN).le(r) & r.lt(k(f32::INFINITY));
+    let fast = halves & sign_clear & x.lt(k(f32::INFINITY)) & (in_range | x.eq(k(0.0)));
+    if fast.all() {
+        return r;
+    }
+    W::select(fast, r, pow_exp_log(x, y))
+}
+
+/// The smallest result [`pow_halves`] gives: below it the low parts of its double-f32
+/// products would fall into the subnormals.
+pub const POW_HALVES_MIN: f32 = 7.888_609_1e-31; // 2^-100
+
+/// `(rh, rl)·(bh, bl)` as an unnormalized double-f32: the rounded product and its error
+/// (by FMA) plus the cross terms.
+#[inline(always)]
+fn dd_mul<W: Wide>(rh: W, rl: W, bh: W, bl: W) -> (W, W) {
+    let p = rh * bh;
+    (p, rl.fma(bh, rh.fma(bl, rh.fma(bh, -p))))
+}
+
+/// `(bh, bl)²` as [`dd_mul`] of the value by itself.
+#[inline(always)]
+fn dd_sq<W: Wide>(bh: W, bl: W) -> (W, W) {
+    let p = bh * bh;
+    (p, (bh + bh).fma(bl, bh.fma(bh, -p)))
+}
+
+/// `x^(n2/2)` for `x` in [+0, inf) and integer `n2` in [0, 32], as a double-f32 `x^m`
+/// (m = ⌊n2/2⌋) by right-to-left binary powering — the error-free product of each step
+/// carried, so the result is the exact power rounded once, 0.5 ulp — times `√x` for odd
+/// `n2` (the square root's rounding added: ≤ 1.5 ulp). Every lane runs the same steps (a
+/// lane whose bit is clear keeps its value), so a lane's bits do not depend on its
+/// neighbours'; steps no lane needs are skipped. Overflow gives inf or NaN, which the caller
+/// sends to the general path.
+#[inline(always)]
+fn pow_halves<W: Wide>(x: W, n2: W) -> W {
+    let n = n2.to_int();
+    let (one, zero) = (W::splat_i(1), W::splat_i(0));
+    let (mut rh, mut rl) = (k::<W>(1.0), k::<W>(0.0));
+    let (mut bh, mut bl) = (x, k::<W>(0.0));
+    let mut rest = n >> 1;
+    for step in 0..5 {
+        let bit = !W::eq_i(rest & one, zero);
+        if bit.any() {
+            let (p, e) = dd_mul(rh, rl, bh, bl);
+            rh = W::select(bit, p, rh);
+            rl = W::select(bit, e, rl);
+        }
+        rest = rest >> 1;
+        if step == 4 || W::eq_i(rest, zero).all() {
+            break;
+        }
+        (bh, bl) = dd_sq(bh, bl);
+    }
+    let half = !W::eq_i(n & one, zero);
+    if half.any() {
+        let (p, e) = dd_mul(rh, rl, x.sqrt(), k(0.0));
+        rh = W::select(half, p, rh);
+        rl = W::select(half, e, rl);
+    }
+    rh + rl
+}
+
+/// [`pow_halves`] for the same `n2` in every lane: the same operations per lane, steered by
+/// the bits of `n2` without masks.
+#[inline(always)]
+fn pow_halves_uniform<W: Wide>(x: W, n2: u32) -> W {
+    let (mut rh, mut rl) = (k::<W>(1.0), k::<W>(0.0));
+    let (mut bh, mut bl) = (x, k::<W>(0.0));
+    let mut rest = n2 >> 1;
+    while rest != 0 {
+        if rest & 1 != 0 {
+            (rh, rl) = dd_mul(rh, rl, bh, bl);
+        }
+        rest >>= 1;
+        if rest != 0 {
+            (bh, bl) = dd_sq(bh, bl);
+        }
+    }
+    if n2 & 1 != 0 {
+        (rh, rl) = dd_mul(rh, rl, x.sqrt(), k(0.0));
+    }
+    rh + rl
+}
+
+/// [`pow`] through `2^(y·log2|x|)`.
+#[inline(always)]
+fn pow_exp_log<W: Wide>(x: W, y: W) -> W {
     // The common case — every lane a positive normal base (or +0 under a positive exponent)
     // with a normal result, every highlight — without the sign and special-value fix-ups and
     // with the exponential scaled in one step: for those lanes `pow_general` computes the

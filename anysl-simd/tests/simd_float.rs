@@ -670,6 +670,63 @@ fn pow_ulps<F: Lanes>() {
     println!("{}: pow error at most {worst:.3} of its bound (2 + 1.5·|y·log2 x| ulp)", F::NAME);
 }
 
+/// Shininess exponents `y = n/2`, n in 0..=32 (binary powering): within 0.5 ulp of
+/// `f64::powf`, 1.5 ulp with the square root of odd n (results down to 2^-100; below, the
+/// exponential path's bound), and each lane's bits the same alone (every lane equal) as beside
+/// lanes with other exponents, negative bases, NaN, infinities and exponents off the halves.
+fn pow_halves_exact<F: Lanes>() {
+    let mut rng = Rng::new(23);
+    let others =
+        [(-2.0f32, 3.0f32), (0.5, 17.0), (f32::NAN, 2.0), (f32::INFINITY, 4.0), (0.7, 2.25), (3.0, -2.0), (1e-30, 6.0)];
+    let mut worst = [0.0f64; 2];
+    for i in 0..RANDOM {
+        let n = i % 33;
+        let y = n as f32 / 2.0;
+        let x = match i % 4 {
+            0 => rng.uniform(0.0, 1.0),
+            1 => rng.uniform(0.0, 4.0),
+            2 => rng.uniform(-20.0, 5.0).exp2(),
+            _ => [0.0, 1.0, 2.0, f32::MIN_POSITIVE, 1e-40][i % 5],
+        };
+        let want = f64::from(x).powf(f64::from(y));
+        let alone = F::c(f64::from(x)).pow(F::c(f64::from(y))).lane(0) as f32;
+        let bound = if want != 0.0 && want < 7.9e-31 {
+            2.0 + 1.5 * (f64::from(y) * f64::from(x).log2()).abs()
+        } else if n % 2 == 1 {
+            1.501
+        } else {
+            0.501
+        };
+        let e = ulps(alone, want);
+        assert!(e <= bound, "pow({x:e}, {y}) in {}: {alone:e} against {want:e}: {e} ulp", F::NAME);
+        if bound < 1.6 {
+            worst[n % 2] = worst[n % 2].max(e);
+        }
+        let (ox, oy) = others[i % others.len()];
+        let mut xs = vec![ox; F::LANES];
+        let mut ys = vec![oy; F::LANES];
+        let at = i % F::LANES;
+        xs[at] = x;
+        ys[at] = y;
+        let mixed = F::load(&xs).pow(F::load(&ys));
+        assert_eq!(
+            (mixed.lane(at) as f32).to_bits(),
+            alone.to_bits(),
+            "pow({x:e}, {y}) beside pow({ox}, {oy}) in {}",
+            F::NAME
+        );
+        let other = (mixed.lane((at + 1) % F::LANES) as f32).to_bits();
+        let other_alone = (F::c(f64::from(ox)).pow(F::c(f64::from(oy))).lane(0) as f32).to_bits();
+        assert_eq!(other, other_alone, "pow({ox}, {oy}) beside pow({x:e}, {y}) in {}", F::NAME);
+    }
+    println!(
+        "{}: pow at half-integer exponents at most {:.3} ulp (integer) / {:.3} ulp (half)",
+        F::NAME,
+        worst[0],
+        worst[1]
+    );
+}
+
 fn trig_family<F: Lanes>() -> [(&'static str, Stats); 7] {
     let mut rng = Rng::new(30);
     let mut trig_in = unary_inputs(31, &[(-10.0, 10.0), (-1e4, 1e4), (-6e5, 6e5)]);
@@ -745,6 +802,10 @@ macro_rules! width_tests {
             #[test]
             fn pow_within_ulps_of_exact() {
                 pow_ulps::<F>();
+            }
+            #[test]
+            fn pow_half_integer_exponents() {
+                pow_halves_exact::<F>();
             }
             #[test]
             fn underflow_to_zero_bit_for_bit() {

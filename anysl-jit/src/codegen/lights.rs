@@ -441,7 +441,8 @@ impl<'c> Cg<'c, '_> {
     /// lights (`perf_probe -- probe`: plastic 0.63 → 0.72× of the ahead-of-time code, ~15 %
     /// more LLVM instructions to compile).
     fn pow_of_cosine(&mut self, x: S<'c>, y: S<'c>) -> S<'c> {
-        let (x, y) = self.unify(x, y);
+        // A uniform exponent stays uniform: `pow` powers by it under scalar branches.
+        let (x, y) = if y.r == Repr::U { (x, y) } else { self.unify(x, y) };
         let it = if self.t.lanes == 1 {
             self.cx.i32_type().into()
         } else {

@@ -91,6 +91,7 @@ impl<'c> Cg<'c, '_> {
             MathFn::Atan2 => self.k_atan2(a[0], a[1]),
             MathFn::Exp => self.k_exp(a[0]),
             MathFn::Ln => self.k_ln(a[0]),
+            MathFn::Pow if args[1].r == Repr::U => self.k_pow_uniform(a[0], args[1].v.into_float_value(), a[1]),
             MathFn::Pow => self.k_pow(a[0], a[1]),
             MathFn::LogBase => {
                 let (x, b) = (self.k_ln(a[0]), self.k_ln(a[1]));
@@ -341,10 +342,177 @@ impl<'c> Cg<'c, '_> {
         self.k_exp2_dd(th, tl)
     }
 
-    /// `x^y` (C99 `pow`), as the library computes it: its fast path (every lane a positive
-    /// normal base, or `+0` under a positive exponent, with a normal result: one-step
-    /// scaling, no fix-ups), else the general form on a branch taken when some lane needs it.
+    /// `f()` on a branch taken when some lane of mask `m` is set, else `common`; the values
+    /// (vectors of any element type, masks too) joined by phis.
+    fn k_when_any(&self, m: V<'c>, common: Vec<V<'c>>, f: impl FnOnce(&Self) -> Vec<V<'c>>) -> Vec<V<'c>> {
+        self.k_when(self.kany(m), common, f)
+    }
+
+    /// `f()` on a branch taken when `cond` holds, else `common`; joined by phis.
+    fn k_when(&self, cond: IntValue<'c>, common: Vec<V<'c>>, f: impl FnOnce(&Self) -> Vec<V<'c>>) -> Vec<V<'c>> {
+        let func = self.cur_fn();
+        let from = self.b.get_insert_block().expect("positioned");
+        let then_bb = self.cx.append_basic_block(func, "when");
+        let join = self.cx.append_basic_block(func, "join");
+        self.b.build_conditional_branch(cond, then_bb, join).expect("br");
+        self.b.position_at_end(then_bb);
+        let r = f(self);
+        let then_end = self.b.get_insert_block().expect("positioned");
+        self.b.build_unconditional_branch(join).expect("br");
+        self.b.position_at_end(join);
+        common
+            .iter()
+            .zip(&r)
+            .map(|(&c, &x)| {
+                let p = self.b.build_phi(c.get_type(), "").expect("phi");
+                p.add_incoming(&[(&c, from), (&x, then_end)]);
+                p.as_basic_value().into_vector_value()
+            })
+            .collect()
+    }
+
+    /// `x^y` (C99 `pow`), as the library computes it: binary powering for the lanes with a
+    /// base in `[+0, inf)` under an exponent in `{0, 1/2, …, 16}` whose result is in range
+    /// ([`Cg::k_pow_halves`]), the exponential of the logarithm for the others, each on a
+    /// branch taken when some lane needs it.
     fn k_pow(&self, x: V<'c>, y: V<'c>) -> V<'c> {
+        use FloatPredicate::{OEQ, OLE, OLT};
+        let n2 = self.kadd(y, y);
+        let sign_clear = self.knot(self.ksign_set(x));
+        let halves = self.kand(
+            self.kand(
+                self.kand(sign_clear, self.kcmp(OLT, x, self.kf(f32::INFINITY))),
+                self.kcmp(OLE, self.kf(0.0), n2),
+            ),
+            self.kand(self.kcmp(OLE, n2, self.kf(32.0)), self.kcmp(OEQ, self.kintr("llvm.roundeven", n2), n2)),
+        );
+        let none = self.kcmp(FloatPredicate::PredicateFalse, x, x);
+        let rf = self.k_when_any(halves, vec![self.kf(0.0), none], |cg| {
+            let r = cg.k_pow_halves(x, n2);
+            let in_range = cg.kand(cg.kcmp(OLE, cg.kf(kc::POW_HALVES_MIN), r), cg.kcmp(OLT, r, cg.kf(f32::INFINITY)));
+            let fast = cg.kand(halves, cg.kor(in_range, cg.kcmp(OEQ, x, cg.kf(0.0))));
+            vec![r, fast]
+        });
+        let (r, fast) = (rf[0], rf[1]);
+        self.k_when_any(self.knot(fast), vec![r], |cg| vec![cg.ksel(fast, r, cg.k_pow_exp_log(x, y))])[0]
+    }
+
+    /// `x^y` for a uniform `y` (scalar `y`, splatted `ys`): for `2y` an integer in `[0, 32]`
+    /// the powering steered by scalar branches on its bits (the library's
+    /// `pow_halves_uniform`), with the lanes out of its range through the exponential of the
+    /// logarithm; else that exponential for every lane.
+    fn k_pow_uniform(&self, x: V<'c>, y: inkwell::values::FloatValue<'c>, ys: V<'c>) -> V<'c> {
+        use FloatPredicate::{OEQ, OLE, OLT};
+        let b = &self.b;
+        let n0 = b.build_float_add(y, y, "").expect("fadd");
+        let k0 = |v: f64| self.f32t.const_float(v);
+        let round = self.unary_intr("llvm.roundeven", n0.into()).into_float_value();
+        let c1 = b.build_float_compare(OLE, k0(0.0), n0, "").expect("fcmp");
+        let c2 = b.build_float_compare(OLE, n0, k0(32.0), "").expect("fcmp");
+        let c3 = b.build_float_compare(OEQ, round, n0, "").expect("fcmp");
+        let cond = b.build_and(b.build_and(c1, c2, "").expect("and"), c3, "").expect("and");
+        // The branch on `cond` with an else: the exponential of the logarithm is computed on
+        // one side only.
+        let func = self.cur_fn();
+        let (then_bb, else_bb, join) = (
+            self.cx.append_basic_block(func, "halves"),
+            self.cx.append_basic_block(func, "explog"),
+            self.cx.append_basic_block(func, "join"),
+        );
+        b.build_conditional_branch(cond, then_bb, else_bb).expect("br");
+        b.position_at_end(then_bb);
+        let n = b.build_float_to_unsigned_int(round, self.cx.i32_type(), "").expect("fptoui");
+        let one = self.cx.i32_type().const_int(1, false);
+        let zero = self.cx.i32_type().const_zero();
+        let (mut rh, mut rl) = (self.kf(1.0), self.kf(0.0));
+        let (mut bh, mut bl) = (x, self.kf(0.0));
+        let mut rest = b.build_right_shift(n, one, false, "").expect("lshr");
+        for step in 0..5 {
+            let bit = b
+                .build_int_compare(IntPredicate::NE, b.build_and(rest, one, "").expect("and"), zero, "")
+                .expect("icmp");
+            let r = self.k_when(bit, vec![rh, rl], |cg| {
+                let p = cg.kmul(rh, bh);
+                vec![p, cg.kfma(rl, bh, cg.kfma(rh, bl, cg.kfma(rh, bh, cg.kneg(p))))]
+            });
+            (rh, rl) = (r[0], r[1]);
+            rest = b.build_right_shift(rest, one, false, "").expect("lshr");
+            if step == 4 {
+                break;
+            }
+            let more = b.build_int_compare(IntPredicate::NE, rest, zero, "").expect("icmp");
+            let sq = self.k_when(more, vec![bh, bl], |cg| {
+                let p = cg.kmul(bh, bh);
+                vec![p, cg.kfma(cg.kadd(bh, bh), bl, cg.kfma(bh, bh, cg.kneg(p)))]
+            });
+            (bh, bl) = (sq[0], sq[1]);
+        }
+        let odd = b.build_int_compare(IntPredicate::NE, b.build_and(n, one, "").expect("and"), zero, "").expect("icmp");
+        let r = self.k_when(odd, vec![rh, rl], |cg| {
+            let s = cg.kintr("llvm.sqrt", x);
+            let p = cg.kmul(rh, s);
+            let z = cg.kf(0.0);
+            vec![p, cg.kfma(rl, s, cg.kfma(rh, z, cg.kfma(rh, s, cg.kneg(p))))]
+        });
+        let r = self.kadd(r[0], r[1]);
+        let in_range =
+            self.kand(self.kcmp(OLE, self.kf(kc::POW_HALVES_MIN), r), self.kcmp(OLT, r, self.kf(f32::INFINITY)));
+        let ok_base = self.kand(self.knot(self.ksign_set(x)), self.kcmp(OLT, x, self.kf(f32::INFINITY)));
+        let fast = self.kand(ok_base, self.kor(in_range, self.kcmp(OEQ, x, self.kf(0.0))));
+        let halves = self.k_when_any(self.knot(fast), vec![r], |cg| vec![cg.ksel(fast, r, cg.k_pow_exp_log(x, ys))])[0];
+        let halves_end = b.get_insert_block().expect("positioned");
+        b.build_unconditional_branch(join).expect("br");
+        b.position_at_end(else_bb);
+        let general = self.k_pow_exp_log(x, ys);
+        let else_end = b.get_insert_block().expect("positioned");
+        b.build_unconditional_branch(join).expect("br");
+        b.position_at_end(join);
+        let p = b.build_phi(x.get_type(), "").expect("phi");
+        p.add_incoming(&[(&halves, halves_end), (&general, else_end)]);
+        p.as_basic_value().into_vector_value()
+    }
+
+    /// `x^(n2/2)` by binary powering in double-f32 and `√x` for odd `n2` (the library's
+    /// `pow_halves`, step for step, each step on a branch taken when some lane needs it).
+    fn k_pow_halves(&self, x: V<'c>, n2: V<'c>) -> V<'c> {
+        let n = self.kto_int(n2);
+        let (mut rh, mut rl) = (self.kf(1.0), self.kf(0.0));
+        let (mut bh, mut bl) = (x, self.kf(0.0));
+        let mut rest = self.kint('>', n, self.ki(1));
+        for step in 0..5 {
+            let bit = self.kodd(rest);
+            let r = self.k_when_any(bit, vec![rh, rl], |cg| {
+                let p = cg.kmul(rh, bh);
+                let e = cg.kfma(rl, bh, cg.kfma(rh, bl, cg.kfma(rh, bh, cg.kneg(p))));
+                vec![cg.ksel(bit, p, rh), cg.ksel(bit, e, rl)]
+            });
+            (rh, rl) = (r[0], r[1]);
+            rest = self.kint('>', rest, self.ki(1));
+            if step == 4 {
+                break;
+            }
+            let more = self.b.build_int_compare(IntPredicate::NE, rest, self.ki(0), "").expect("icmp");
+            let b = self.k_when_any(more, vec![bh, bl], |cg| {
+                let p = cg.kmul(bh, bh);
+                vec![p, cg.kfma(cg.kadd(bh, bh), bl, cg.kfma(bh, bh, cg.kneg(p)))]
+            });
+            (bh, bl) = (b[0], b[1]);
+        }
+        let half = self.kodd(n);
+        let r = self.k_when_any(half, vec![rh, rl], |cg| {
+            let s = cg.kintr("llvm.sqrt", x);
+            let p = cg.kmul(rh, s);
+            let e = cg.kfma(rl, s, cg.kfma(rh, cg.kf(0.0), cg.kfma(rh, s, cg.kneg(p))));
+            vec![cg.ksel(half, p, rh), cg.ksel(half, e, rl)]
+        });
+        self.kadd(r[0], r[1])
+    }
+
+    /// `x^y` through `2^(y·log2|x|)` (the library's `pow_exp_log`): its fast path (every lane
+    /// a positive normal base, or `+0` under a positive exponent, with a normal result:
+    /// one-step scaling, no fix-ups), else the general form on a branch taken when some lane
+    /// needs it.
+    fn k_pow_exp_log(&self, x: V<'c>, y: V<'c>) -> V<'c> {
         use FloatPredicate::{OLE, OLT};
         let zero = self.kf(0.0);
         let is_pz = self.b.build_int_compare(IntPredicate::EQ, self.kbits(x), self.ki(0), "").expect("icmp");
