@@ -2016,7 +2016,8 @@ impl<'a> Gen<'a> {
                 if ty.base == BaseType::Color {
                     format!("{{ let c = {x}; match ColorSpace::from_name({space}) {{ Some(cs) => to_rgb(cs, c), None => c }} }}")
                 } else {
-                    let to = format!("{}.to_current::<F>({space})", self.spaces_table());
+                    let t = if r == Repr::Scalar { "f64" } else { "F" };
+                    let to = format!("{}.to_current::<{t}>({space})", self.spaces_table());
                     match ty.base {
                         BaseType::Matrix => format!("({x} * {to})"),
                         BaseType::Vector => format!("{to}.transform_vector({x})"),
@@ -2440,7 +2441,8 @@ impl<'a> Gen<'a> {
                         let strings = args.iter().filter(|x| self.arg_ty(**x).base == B::String).count();
                         if strings == 1 {
                             // transform(fromspace, m, p): from `fromspace` to current, then by `m`.
-                            let to = format!("{}.to_current::<F>({})", self.spaces_table(), a(0));
+                            let t = if r == Repr::Scalar { "f64" } else { "F" };
+                            let to = format!("{}.to_current::<{t}>({})", self.spaces_table(), a(0));
                             format!("{}.{f}({to}.{f}({last}))", a(mi))
                         } else {
                             format!("{}.{f}({last})", a(mi))
@@ -2452,10 +2454,11 @@ impl<'a> Gen<'a> {
                             ("ntransform", _) | (_, B::Normal) => "transform_normal",
                             _ => "transform_point",
                         };
+                        let t = if r == Repr::Scalar { "f64" } else { "F" };
                         let m = if n == 3 {
-                            format!("{}.between::<F>({}, {})", self.spaces_table(), a(0), a(1))
+                            format!("{}.between::<{t}>({}, {})", self.spaces_table(), a(0), a(1))
                         } else {
-                            format!("{}.from_current::<F>({})", self.spaces_table(), a(0))
+                            format!("{}.from_current::<{t}>({})", self.spaces_table(), a(0))
                         };
                         format!("{m}.{f}({last})")
                     }
