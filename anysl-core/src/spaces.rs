@@ -23,7 +23,8 @@ use std::collections::BTreeSet;
 use std::sync::{Arc, Mutex};
 
 /// The names RSL defines for every renderer (`"eye"` is an old name of `"camera"`).
-pub const STANDARD_SPACES: &[&str] = &["current", "object", "shader", "world", "camera", "screen", "raster", "NDC", "eye"];
+pub const STANDARD_SPACES: &[&str] =
+    &["current", "object", "shader", "world", "camera", "screen", "raster", "NDC", "eye"];
 
 /// One named space: its matrix to `current` and back.
 #[derive(Clone, Debug, PartialEq)]

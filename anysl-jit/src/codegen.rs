@@ -1349,7 +1349,11 @@ impl<'c, 'm> Cg<'c, 'm> {
         let aux = kind | (names.len() as u32) << 2;
         let callee = CallableValue::try_from(fnp).expect("callable");
         self.b
-            .build_call(callee, &[ctx.into(), mask.into(), inp.into(), out.into(), self.i32c(u64::from(aux)).into()], "")
+            .build_call(
+                callee,
+                &[ctx.into(), mask.into(), inp.into(), out.into(), self.i32c(u64::from(aux)).into()],
+                "",
+            )
             .expect("call");
         self.unspill(out, 16, true)
     }
@@ -2841,8 +2845,11 @@ impl<'c> Cg<'c, '_> {
                         _ => rt::geo::XFORM_POINT,
                     };
                     // `matrix "name" m` is m · (name → current); a triple is transformed by it.
-                    let all: Vec<S<'c>> =
-                        if aux == rt::geo::MATMUL { x.into_iter().chain(to).collect() } else { to.into_iter().chain(x).collect() };
+                    let all: Vec<S<'c>> = if aux == rt::geo::MATMUL {
+                        x.into_iter().chain(to).collect()
+                    } else {
+                        to.into_iter().chain(x).collect()
+                    };
                     let n_out = if aux == rt::geo::MATMUL { 16 } else { 3 };
                     Val::Num(self.rt_call(RtKind::Geo, aux, &all, n_out, false))
                 }
@@ -3186,12 +3193,8 @@ impl<'c> Cg<'c, '_> {
                             _ => rt::geo::XFORM_POINT,
                         };
                         let mut all = if n == 3 {
-                            let names = format!(
-                                "{}{}{}",
-                                Self::as_str(&args[0]),
-                                rt::SPACE_SEPARATOR,
-                                Self::as_str(&args[1])
-                            );
+                            let names =
+                                format!("{}{}{}", Self::as_str(&args[0]), rt::SPACE_SEPARATOR, Self::as_str(&args[1]));
                             self.space_matrix(rt::SPACE_BETWEEN, &names)
                         } else {
                             self.space_matrix(rt::SPACE_FROM_CURRENT, &Self::as_str(&args[0]))

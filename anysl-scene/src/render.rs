@@ -23,10 +23,10 @@ use crate::film::{reconstruct, SampleWindow};
 use crate::shaders::{apply_params, standard_light, ShaderLibrary};
 use anysl_core::{Matrix4, Spaces, SurfaceShader};
 use anysl_renderers::Projection;
-use glam::DMat4;
 use anysl_renderers::{Camera, Image, Scene};
 use anysl_rsl::back::interp::{InterpShader, Program};
 use anysl_shaders::Light;
+use glam::DMat4;
 use std::collections::HashMap;
 use std::sync::Arc;
 
@@ -196,9 +196,7 @@ pub fn frame_spaces(frame: &FrameDesc) -> Spaces {
         1.0,
     ]);
     let (xres, yres) = (f64::from(frame.film.xres), f64::from(frame.film.yres));
-    let n2r = Matrix4::from_array([
-        xres, 0.0, 0.0, 0.0, 0.0, yres, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0,
-    ]);
+    let n2r = Matrix4::from_array([xres, 0.0, 0.0, 0.0, 0.0, yres, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0]);
     let w2s = w2c * c2s;
     let w2n = w2s * s2n;
     let w2r = w2n * n2r;

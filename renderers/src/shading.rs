@@ -12,7 +12,7 @@ use crate::scene::{Scene, SurfaceHit};
 use anysl_ad::Dual;
 use anysl_core::{
     in_cone, run_illuminance, sum_ambient, Color, Emission, Exec, GlobalSet, Globals, LightData, LightOutput,
-    LightShader, Mask, ShadingContext, Spaces, ShadingFloat, SurfaceOutput, SurfaceShader, SurfaceVisitor, Vec3,
+    LightShader, Mask, ShadingContext, ShadingFloat, Spaces, SurfaceOutput, SurfaceShader, SurfaceVisitor, Vec3,
 };
 use glam::Vec3A;
 

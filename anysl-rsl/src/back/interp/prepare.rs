@@ -507,12 +507,7 @@ impl Cx<'_> {
                 let Loc::Str(space, _) = arg(0) else {
                     return Err(unsupported());
                 };
-                Code::FromSpace {
-                    dst: dst.off(),
-                    space,
-                    src: arg(1).off(),
-                    base: inst.ty.base,
-                }
+                Code::FromSpace { dst: dst.off(), space, src: arg(1).off(), base: inst.ty.base }
             }
             Op::Call { name, outputs, .. } => {
                 let arg_tys: Vec<(BaseType, Option<u32>)> = inst
