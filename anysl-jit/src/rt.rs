@@ -626,7 +626,7 @@ impl<F: ShadingFloat, C: ShadingContext<F>, G: JitFloat> HostTable<F, C, G> {
         host_deriv::<F, C, G> as *const (),
         host_calcnormal::<F, C, G> as *const (),
         host_random::<F, C, G> as *const (),
-        host_space::<F, C, G> as *const (),
+        host_space::<F, C> as *const (),
     ];
 
     /// [`HostTable::TABLE`] as the compiled code reads it (addresses as `usize`).
@@ -850,7 +850,7 @@ pub const SPACE_BETWEEN: u32 = 2;
 /// A matrix of the context's named spaces ([`ShadingContext::spaces`]) as 16 uniform floats:
 /// `inp` points at the name's UTF-8 bytes, `aux` is the kind (low 2 bits, `SPACE_*`) and the
 /// name's length in bytes (above).
-unsafe extern "C" fn host_space<F: ShadingFloat, C: ShadingContext<F>, G: JitFloat>(
+unsafe extern "C" fn host_space<F: ShadingFloat, C: ShadingContext<F>>(
     ctx: *mut c_void,
     _: *const u32,
     inp: *const f32,

@@ -231,7 +231,9 @@ fn place_spaces<S: Clone>(
         return out;
     }
     let base = frame_spaces(frame);
-    let mut slots: Vec<((usize, [u32; 16], [u32; 16]), usize)> = Vec::new();
+    // (surface, object matrix bits, shader matrix bits) → the slot made for them.
+    type Key = (usize, [u32; 16], [u32; 16]);
+    let mut slots: Vec<(Key, usize)> = Vec::new();
     let mut first_use = vec![true; shaders.len()];
     for (i, inst) in instances.iter_mut().enumerate() {
         let s = inst.surface;

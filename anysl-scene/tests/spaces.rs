@@ -60,7 +60,7 @@ fn object_space_is_each_instances_own() {
     let expect = |i: usize, j: usize| {
         let (x, y) = screen(i, j);
         // World (5x, 5y, 5); object = world − the instance's translation.
-        (x.abs() < 0.55 && y.abs() < 0.55).then(|| {
+        (x.abs() < 0.55 && y.abs() < 0.55).then_some({
             if x < 0.0 {
                 [5.0 * x + 1.0, 5.0 * y, 0.0]
             } else {
