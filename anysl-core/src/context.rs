@@ -6,6 +6,7 @@
 use crate::exec::Exec;
 use crate::float::{Blend, Mask, ShadingFloat};
 use crate::shader::LightShader;
+use crate::spaces::Spaces;
 use crate::vec::{Color, Vec3};
 
 /// A set of the fields of [`Globals`] — what a shader reads, so that a renderer may leave the
@@ -552,6 +553,14 @@ pub trait ShadingContext<F: ShadingFloat> {
     fn lights_as_data(&self) -> Option<&[LightData]> {
         None
     }
+
+    /// The named coordinate systems of the points being shaded (uniform over them): looked up
+    /// only by shaders that name a space. The default, [`Spaces::standard`], makes every
+    /// standard space the shading space.
+    #[inline(always)]
+    fn spaces(&self) -> &Spaces {
+        Spaces::standard()
+    }
 }
 
 /// [`ShadingContext`] without generic methods, so that it can be a trait object: code that
@@ -576,6 +585,8 @@ pub trait ErasedContext<F: ShadingFloat> {
     fn trace_dyn(&mut self, e: &Exec<F>, p: Vec3<F>, dir: Vec3<F>) -> Color<F>;
     /// [`ShadingContext::lights_as_data`].
     fn lights_as_data_dyn(&self) -> Option<&[LightData]>;
+    /// [`ShadingContext::spaces`].
+    fn spaces_dyn(&self) -> &Spaces;
 }
 
 impl<F: ShadingFloat, C: ShadingContext<F>> ErasedContext<F> for C {
@@ -600,6 +611,9 @@ impl<F: ShadingFloat, C: ShadingContext<F>> ErasedContext<F> for C {
     }
     fn lights_as_data_dyn(&self) -> Option<&[LightData]> {
         self.lights_as_data()
+    }
+    fn spaces_dyn(&self) -> &Spaces {
+        self.spaces()
     }
 }
 
@@ -629,6 +643,9 @@ impl<F: ShadingFloat> ShadingContext<F> for Erased<'_, F> {
     }
     fn lights_as_data(&self) -> Option<&[LightData]> {
         self.0.lights_as_data_dyn()
+    }
+    fn spaces(&self) -> &Spaces {
+        self.0.spaces_dyn()
     }
 }
 
@@ -727,6 +744,8 @@ pub struct PointContext<'a, F: ShadingFloat, L> {
     pub horizon: Color<F>,
     /// See `horizon`.
     pub zenith: Color<F>,
+    /// The named coordinate systems (default: [`Spaces::standard`]).
+    pub spaces: &'a Spaces,
     /// `lights` as data, made on the first [`ShadingContext::lights_as_data`] (and for the
     /// slice it was made from: after `lights` is replaced, the context describes none).
     data: core::cell::OnceCell<Option<LightTable>>,
@@ -742,6 +761,7 @@ impl<'a, F: ShadingFloat, L: LightSource> PointContext<'a, F, L> {
             lights,
             horizon: Color::c(0.6, 0.6, 0.6),
             zenith: Color::c(0.2, 0.3, 0.8),
+            spaces: Spaces::standard(),
             data: core::cell::OnceCell::new(),
         }
     }
@@ -800,5 +820,10 @@ impl<F: ShadingFloat, L: LightSource> ShadingContext<F> for PointContext<'_, F, 
         }
         let t = self.data.get_or_init(|| light_table(self.lights)).as_ref()?;
         (t.from == (self.lights.as_ptr() as usize, self.lights.len())).then(|| &t.data[..t.len])
+    }
+
+    #[inline(always)]
+    fn spaces(&self) -> &Spaces {
+        self.spaces
     }
 }

@@ -26,6 +26,7 @@ pub mod float;
 pub mod points;
 pub mod prelude;
 pub mod shader;
+pub mod spaces;
 pub mod stdlib;
 pub mod vec;
 
@@ -40,4 +41,5 @@ pub use shader::{
     DisplacementShader, LightShader, ParamError, ParamField, ParamInfo, ParamType, ParamValue, Shader, ShaderKind,
     ShaderMeta, Storage, SurfaceShader, SurfaceVisitor,
 };
+pub use spaces::{Spaces, STANDARD_SPACES};
 pub use vec::{Color, Matrix4, Vec3};

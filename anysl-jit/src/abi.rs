@@ -173,7 +173,8 @@ pub mod host {
     pub const DERIV: usize = 8;
     pub const CALCNORMAL: usize = 9;
     pub const RANDOM: usize = 10;
-    pub const LEN: usize = 11;
+    pub const SPACE: usize = 11;
+    pub const LEN: usize = 12;
 }
 
 /// Most lanes of any [`JitFloat`] (`Pair<Pair<F32x8>>`, `Pair<F32x16>`): the size of the mask

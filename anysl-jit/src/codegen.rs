@@ -1337,6 +1337,27 @@ impl<'c, 'm> Cg<'c, 'm> {
         ))
     }
 
+    /// A matrix of the context's named spaces as 16 uniform values (`kind`: `rt::SPACE_*`,
+    /// `names`: the space name, or both names of `rt::SPACE_BETWEEN`).
+    fn space_matrix(&mut self, kind: u32, names: &str) -> Vec<S<'c>> {
+        let gs = self.b.build_global_string_ptr(names, "space").expect("string").as_pointer_value();
+        let inp = self.b.build_pointer_cast(gs, self.f32t.ptr_type(AddressSpace::default()), "").expect("cast");
+        let out = self.out_buf(16, true);
+        let mask = self.mask_buf();
+        let fnp = self.host_fn_ptr(host::SPACE, self.rt_fn_type());
+        let ctx = self.st().ctx;
+        let aux = kind | (names.len() as u32) << 2;
+        let callee = CallableValue::try_from(fnp).expect("callable");
+        self.b
+            .build_call(
+                callee,
+                &[ctx.into(), mask.into(), inp.into(), out.into(), self.i32c(u64::from(aux)).into()],
+                "",
+            )
+            .expect("call");
+        self.unspill(out, 16, true)
+    }
+
     fn host_call(&mut self, idx: usize, aux: u32, args: &[S<'c>], n_out: usize) -> Vec<S<'c>> {
         let fnp = self.host_fn_ptr(idx, self.rt_fn_type());
         self.callback(fnp, aux, args, n_out, false)
@@ -2816,8 +2837,21 @@ impl<'c> Cg<'c, '_> {
                         None => Val::Num(x),
                     }
                 } else {
-                    // Every coordinate system is the shading space in these renderers.
-                    Val::Num(x)
+                    let to = self.space_matrix(rt::SPACE_TO_CURRENT, &Self::as_str(&args[0]));
+                    let aux = match inst.ty.base {
+                        BaseType::Matrix => rt::geo::MATMUL,
+                        BaseType::Vector => rt::geo::XFORM_VECTOR,
+                        BaseType::Normal => rt::geo::XFORM_NORMAL,
+                        _ => rt::geo::XFORM_POINT,
+                    };
+                    // `matrix "name" m` is m · (name → current); a triple is transformed by it.
+                    let all: Vec<S<'c>> = if aux == rt::geo::MATMUL {
+                        x.into_iter().chain(to).collect()
+                    } else {
+                        to.into_iter().chain(x).collect()
+                    };
+                    let n_out = if aux == rt::geo::MATMUL { 16 } else { 3 };
+                    Val::Num(self.rt_call(RtKind::Geo, aux, &all, n_out, false))
                 }
             }
             Op::Call { name, outputs, .. } => {
@@ -3141,11 +3175,33 @@ impl<'c> Cg<'c, '_> {
                             ("ntransform", _) | (_, BaseType::Normal) => rt::geo::XFORM_NORMAL,
                             _ => rt::geo::XFORM_POINT,
                         };
+                        let mut x = x;
+                        if (0..n).any(|i| aty(i) == BaseType::String) {
+                            // transform(fromspace, m, p): from `fromspace` to current, then by `m`.
+                            let mut all = self.space_matrix(rt::SPACE_TO_CURRENT, &Self::as_str(&args[0]));
+                            all.extend(x);
+                            x = self.rt_call(RtKind::Geo, aux, &all, 3, false);
+                        }
                         let mut all = nums(self, mi)?;
                         all.extend(x);
                         Val::Num(self.rt_call(RtKind::Geo, aux, &all, 3, false))
                     }
-                    None => Val::Num(x),
+                    None => {
+                        let aux = match (name, inst.ty.base) {
+                            ("vtransform", _) | (_, BaseType::Vector) => rt::geo::XFORM_VECTOR,
+                            ("ntransform", _) | (_, BaseType::Normal) => rt::geo::XFORM_NORMAL,
+                            _ => rt::geo::XFORM_POINT,
+                        };
+                        let mut all = if n == 3 {
+                            let names =
+                                format!("{}{}{}", Self::as_str(&args[0]), rt::SPACE_SEPARATOR, Self::as_str(&args[1]));
+                            self.space_matrix(rt::SPACE_BETWEEN, &names)
+                        } else {
+                            self.space_matrix(rt::SPACE_FROM_CURRENT, &Self::as_str(&args[0]))
+                        };
+                        all.extend(x);
+                        Val::Num(self.rt_call(RtKind::Geo, aux, &all, 3, false))
+                    }
                 }
             }
             "ctransform" => {

@@ -626,6 +626,7 @@ impl<F: ShadingFloat, C: ShadingContext<F>, G: JitFloat> HostTable<F, C, G> {
         host_deriv::<F, C, G> as *const (),
         host_calcnormal::<F, C, G> as *const (),
         host_random::<F, C, G> as *const (),
+        host_space::<F, C> as *const (),
     ];
 
     /// [`HostTable::TABLE`] as the compiled code reads it (addresses as `usize`).
@@ -834,6 +835,41 @@ unsafe extern "C" fn host_random<F: ShadingFloat, C: ShadingContext<F>, G: JitFl
     let mut o = HOut::<F, G>::new(out);
     for c in 0..aux {
         o.f(cellnoise(NoiseDomain::D4(p * F::c(1.0e4), F::c(f64::from(c) + 0.5))));
+    }
+}
+
+/// Separates the two names of [`SPACE_BETWEEN`] in the string [`host_space`] reads.
+pub const SPACE_SEPARATOR: char = '\u{1f}';
+/// [`host_space`] kind: the matrix from the named space to current.
+pub const SPACE_TO_CURRENT: u32 = 0;
+/// [`host_space`] kind: the matrix from current to the named space.
+pub const SPACE_FROM_CURRENT: u32 = 1;
+/// [`host_space`] kind: the matrix between two named spaces (`from`, separator, `to`).
+pub const SPACE_BETWEEN: u32 = 2;
+
+/// A matrix of the context's named spaces ([`ShadingContext::spaces`]) as 16 uniform floats:
+/// `inp` points at the name's UTF-8 bytes, `aux` is the kind (low 2 bits, `SPACE_*`) and the
+/// name's length in bytes (above).
+unsafe extern "C" fn host_space<F: ShadingFloat, C: ShadingContext<F>>(
+    ctx: *mut c_void,
+    _: *const u32,
+    inp: *const f32,
+    out: *mut f32,
+    aux: u32,
+) {
+    let spaces = (*ctx.cast::<HostCtx<F, C>>()).ctx.spaces();
+    let bytes = core::slice::from_raw_parts(inp.cast::<u8>(), (aux >> 2) as usize);
+    let name = core::str::from_utf8(bytes).unwrap_or("");
+    let m = match aux & 3 {
+        SPACE_TO_CURRENT => spaces.to_current_f64(name),
+        SPACE_FROM_CURRENT => spaces.from_current_f64(name),
+        _ => {
+            let (from, to) = name.split_once(SPACE_SEPARATOR).unwrap_or((name, "current"));
+            spaces.between_f64(from, to)
+        }
+    };
+    for (i, x) in m.iter().enumerate() {
+        *out.add(i) = *x as f32;
     }
 }
 

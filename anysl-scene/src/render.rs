@@ -21,10 +21,12 @@
 use crate::build::{Film, FrameDesc, ShaderCall};
 use crate::film::{reconstruct, SampleWindow};
 use crate::shaders::{apply_params, standard_light, ShaderLibrary};
-use anysl_core::SurfaceShader;
+use anysl_core::{Matrix4, Spaces, SurfaceShader};
+use anysl_renderers::Projection;
 use anysl_renderers::{Camera, Image, Scene};
 use anysl_rsl::back::interp::{InterpShader, Program};
 use anysl_shaders::Light;
+use glam::DMat4;
 use std::collections::HashMap;
 use std::sync::Arc;
 
@@ -34,6 +36,8 @@ pub struct Surfaces<S> {
     pub library: ShaderLibrary,
     make: Box<dyn FnMut(anysl_rsl::ir::Module) -> Result<S, String>>,
     cache: HashMap<String, S>,
+    /// Whether each shader made so far names a coordinate system.
+    uses_spaces: HashMap<String, bool>,
     /// Shaders of earlier frames with their parameters set (and, for the JIT, compiled),
     /// handed back by [`Surfaces::keep`] for the next frame to reuse.
     kept: Vec<(ShaderCall, S)>,
@@ -42,7 +46,7 @@ pub struct Surfaces<S> {
 impl<S: SurfaceShader + Clone> Surfaces<S> {
     /// Shaders made by `make` from each shader's compiled module.
     pub fn new(library: ShaderLibrary, make: impl FnMut(anysl_rsl::ir::Module) -> Result<S, String> + 'static) -> Self {
-        Self { library, make: Box::new(make), cache: HashMap::new(), kept: Vec::new() }
+        Self { library, make: Box::new(make), cache: HashMap::new(), uses_spaces: HashMap::new(), kept: Vec::new() }
     }
 
     /// Hands back the surface shaders of a rendered frame (`frame.surfaces` in order), so a
@@ -76,6 +80,7 @@ impl<S: SurfaceShader + Clone> Surfaces<S> {
             return Ok(s.clone());
         }
         let module = self.library.module(name)?;
+        self.uses_spaces.insert(name.to_string(), module.uses_spaces());
         let shader = (self.make)(module).map_err(|e| format!("shader \"{name}\": {e}"))?;
         self.cache.insert(name.to_string(), shader.clone());
         Ok(shader)
@@ -136,9 +141,126 @@ pub fn frame_scene<S: SurfaceShader + Clone>(
     let window = SampleWindow::of(&frame.film);
     let (w, h) = window.sample_size();
     let camera = Camera::from_spec(&window.camera(&frame.camera, &frame.film), w, h);
-    let scene =
-        Scene::new(camera, &frame.meshes, frame.instances.clone(), shaders, lights).map_err(|e| e.to_string())?;
+    let mut instances = frame.instances.clone();
+    let surface_spaces = place_spaces(frame, &surfaces.uses_spaces, &mut instances, &mut shaders);
+    let mut scene = Scene::new(camera, &frame.meshes, instances, shaders, lights).map_err(|e| e.to_string())?;
+    scene.surface_spaces = surface_spaces;
     Ok(FrameScene { scene, window, warnings })
+}
+
+/// A glam matrix (column vectors) as an RSL one (row vectors, row by row).
+fn rsl(m: DMat4) -> Matrix4<f64> {
+    Matrix4::from_array(m.to_cols_array())
+}
+
+fn rows(m: Matrix4<f64>) -> [f64; 16] {
+    core::array::from_fn(|i| m.m[i / 4][i % 4])
+}
+
+/// The frame's named coordinate systems, each as its matrix to current (= world): "world",
+/// "camera", "screen", "NDC", "raster" and every `CoordinateSystem`.
+#[must_use]
+pub fn frame_spaces(frame: &FrameDesc) -> Spaces {
+    let cam = &frame.camera;
+    let c2w = rsl(cam.camera_to_world.as_dmat4());
+    let w2c = c2w.inverse();
+    // Camera to screen (row vectors): the perspective divide by z, z' = f/(f−n) (1 − n/z)
+    // (1 − n/z for an infinite far plane); orthographic: the identity.
+    let c2s = match cam.projection {
+        Projection::Perspective { fov } => {
+            let t = 1.0 / (f64::from(fov) / 2.0).tan();
+            let (n, f) = (f64::from(cam.clipping[0]), f64::from(cam.clipping[1]));
+            let (a, b) = if f.is_finite() { (f / (f - n), -f * n / (f - n)) } else { (1.0, -n) };
+            Matrix4::from_array([t, 0.0, 0.0, 0.0, 0.0, t, 0.0, 0.0, 0.0, 0.0, a, 1.0, 0.0, 0.0, b, 0.0])
+        }
+        Projection::Orthographic => Matrix4::identity(),
+    };
+    // Screen window to [0, 1]², y down.
+    let [l, r, bo, to] = cam.screen_window.map(f64::from);
+    let s2n = Matrix4::from_array([
+        1.0 / (r - l),
+        0.0,
+        0.0,
+        0.0,
+        0.0,
+        -1.0 / (to - bo),
+        0.0,
+        0.0,
+        0.0,
+        0.0,
+        1.0,
+        0.0,
+        -l / (r - l),
+        to / (to - bo),
+        0.0,
+        1.0,
+    ]);
+    let (xres, yres) = (f64::from(frame.film.xres), f64::from(frame.film.yres));
+    let n2r = Matrix4::from_array([xres, 0.0, 0.0, 0.0, 0.0, yres, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0]);
+    let w2s = w2c * c2s;
+    let w2n = w2s * s2n;
+    let w2r = w2n * n2r;
+    let mut t = Spaces::new([
+        ("world", rows(Matrix4::identity())),
+        ("camera", rows(c2w)),
+        ("screen", rows(w2s.inverse())),
+        ("NDC", rows(w2n.inverse())),
+        ("raster", rows(w2r.inverse())),
+    ]);
+    for (name, m) in &frame.coordinate_systems {
+        t.insert(name, rows(rsl(m.as_dmat4())));
+    }
+    t
+}
+
+/// The named spaces of every surface: a shader that names a space gets one surface slot per
+/// distinct ("object", "shader") pair of the instances using it, each with its table, so the
+/// spaces are uniform over the points a renderer shades together; other shaders keep one
+/// slot and an empty table (never read).
+fn place_spaces<S: Clone>(
+    frame: &FrameDesc,
+    uses: &HashMap<String, bool>,
+    instances: &mut [anysl_renderers::Instance],
+    shaders: &mut Vec<S>,
+) -> Vec<Spaces> {
+    let names: Vec<&str> = frame.surfaces.iter().map(|c| c.name.as_str()).collect();
+    let spacey: Vec<bool> =
+        (0..shaders.len()).map(|k| names.get(k).is_some_and(|n| uses.get(*n).copied().unwrap_or(false))).collect();
+    let mut out = vec![Spaces::default(); shaders.len()];
+    if !spacey.iter().any(|&b| b) {
+        return out;
+    }
+    let base = frame_spaces(frame);
+    // (surface, object matrix bits, shader matrix bits) → the slot made for them.
+    type Key = (usize, [u32; 16], [u32; 16]);
+    let mut slots: Vec<(Key, usize)> = Vec::new();
+    let mut first_use = vec![true; shaders.len()];
+    for (i, inst) in instances.iter_mut().enumerate() {
+        let s = inst.surface;
+        if !spacey.get(s).copied().unwrap_or(false) {
+            continue;
+        }
+        let shader_space = frame.shader_spaces.get(i).copied().unwrap_or(glam::Mat4::IDENTITY);
+        let key = (s, inst.transform.to_cols_array().map(f32::to_bits), shader_space.to_cols_array().map(f32::to_bits));
+        if let Some((_, k)) = slots.iter().find(|(x, _)| *x == key) {
+            inst.surface = *k;
+            continue;
+        }
+        let mut t = base.clone();
+        t.insert("object", rows(rsl(inst.transform.as_dmat4())));
+        t.insert("shader", rows(rsl(shader_space.as_dmat4())));
+        let k = if std::mem::take(&mut first_use[s]) {
+            s
+        } else {
+            shaders.push(shaders[s].clone());
+            out.push(Spaces::default());
+            shaders.len() - 1
+        };
+        out[k] = t;
+        inst.surface = k;
+        slots.push((key, k));
+    }
+    out
 }
 
 impl<S> FrameScene<S> {

@@ -6,6 +6,7 @@
 use crate::accel::{Accel, Hit, RayPacket, MAX_PACKET};
 use crate::camera::Camera;
 use crate::mesh::Mesh;
+use anysl_core::Spaces;
 use glam::{Mat4, Vec2, Vec3, Vec3A};
 use std::fmt;
 
@@ -103,6 +104,10 @@ pub struct Scene<S, L> {
     pub surfaces: Vec<S>,
     /// Light shaders.
     pub lights: Vec<L>,
+    /// The named coordinate systems each surface shader sees (by [`Instance::surface`]); a
+    /// surface without an entry sees [`Spaces::standard`]. Read only by shaders that name a
+    /// space.
+    pub surface_spaces: Vec<Spaces>,
     /// What escaping rays see.
     pub sky: Sky,
     instances: Vec<Instance>,
@@ -229,6 +234,7 @@ impl<S, L> Scene<S, L> {
             camera,
             surfaces,
             lights,
+            surface_spaces: Vec::new(),
             sky: Sky::default(),
             instances,
             positions,

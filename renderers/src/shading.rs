@@ -12,7 +12,7 @@ use crate::scene::{Scene, SurfaceHit};
 use anysl_ad::Dual;
 use anysl_core::{
     in_cone, run_illuminance, sum_ambient, Color, Emission, Exec, GlobalSet, Globals, LightData, LightOutput,
-    LightShader, Mask, ShadingContext, ShadingFloat, SurfaceOutput, SurfaceShader, SurfaceVisitor, Vec3,
+    LightShader, Mask, ShadingContext, ShadingFloat, Spaces, SurfaceOutput, SurfaceShader, SurfaceVisitor, Vec3,
 };
 use glam::Vec3A;
 
@@ -101,6 +101,8 @@ pub struct SceneContext<'a, F: ShadingFloat, S, L> {
     pub globals: Globals<F>,
     tracer: Tracer<'a, S, L>,
     depth: Depth,
+    /// The surface shader being run (its named spaces are looked up when a shader asks).
+    surface: u32,
 }
 
 /// The lane mask of `bits`.
@@ -535,7 +537,9 @@ impl<F: ShadingFloat, S: SurfaceShader, L: LightShader> SurfaceVisitor for Group
             // White is what the gather gives for Cs and Os left unread.
             read = GlobalSet(read.0 & !(GlobalSet::CS.0 | GlobalSet::OS.0));
         }
-        let mut ctx = SceneContext { globals: gather_globals_read::<F>(lanes.hits, group, first, read), tracer, depth };
+        let surface = lanes.hits[first].surface;
+        let globals = gather_globals_read::<F>(lanes.hits, group, first, read);
+        let mut ctx = SceneContext { globals, tracer, depth, surface };
         let mut e = Exec::with_mask(lane_mask::<F>(group));
         let out = shader.shade(&mut ctx, &mut e);
         composite::<F, S, L>(tracer, lanes, group, depth, out)
@@ -698,6 +702,10 @@ impl<F: ShadingFloat, S: SurfaceShader, L: LightShader> ShadingContext<F> for Sc
     #[inline(always)]
     fn globals(&self) -> &Globals<F> {
         &self.globals
+    }
+
+    fn spaces(&self) -> &Spaces {
+        self.tracer.scene.surface_spaces.get(self.surface as usize).unwrap_or(Spaces::standard())
     }
 
     #[inline(always)]

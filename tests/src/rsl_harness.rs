@@ -31,6 +31,9 @@ pub struct Directives {
     pub expects: Vec<(String, Vec<f64>)>,
     /// `// tol:` absolute tolerance ([`DEFAULT_TOL`] when absent).
     pub tol: f64,
+    /// `// space: name = 16 numbers`: named coordinate systems, each given by its matrix to
+    /// current (row-vector convention, row by row); other names are the identity.
+    pub spaces: anysl_core::Spaces,
 }
 
 fn numbers(text: &str) -> Option<Vec<f64>> {
@@ -47,6 +50,7 @@ pub fn parse_directives(text: &str) -> Directives {
         lights: true,
         expects: Vec::new(),
         tol: DEFAULT_TOL,
+        spaces: anysl_core::Spaces::default(),
     };
     for line in text.lines() {
         let Some(rest) = line.trim().strip_prefix("//") else { continue };
@@ -82,6 +86,13 @@ pub fn parse_directives(text: &str) -> Directives {
                 }
             }
             "tol" => d.tol = value.parse().unwrap_or(DEFAULT_TOL),
+            "space" => {
+                if let Some((n, v)) = value.split_once('=') {
+                    if let Some(m) = numbers(v).and_then(|m| <[f64; 16]>::try_from(m).ok()) {
+                        d.spaces.insert(n.trim(), m);
+                    }
+                }
+            }
             _ => {}
         }
     }

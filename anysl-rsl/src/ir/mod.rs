@@ -477,6 +477,24 @@ pub struct Module {
     pub func: Function,
 }
 
+impl Module {
+    /// Whether the shader names a coordinate system (`point "object" (…)`, `transform("shader",
+    /// P)`, `matrix "world" 1`, …), so that its results depend on the
+    /// [`anysl_core::ShadingContext::spaces`] it runs with.
+    #[must_use]
+    pub fn uses_spaces(&self) -> bool {
+        let f = &self.func;
+        f.insts.iter().any(|i| match &i.op {
+            Op::FromSpace => i.ty.base != BaseType::Color,
+            Op::Call { name, .. } => {
+                matches!(name.as_str(), "transform" | "vtransform" | "ntransform")
+                    && i.args.iter().any(|a| f.inst(*a).ty.base == BaseType::String)
+            }
+            _ => false,
+        })
+    }
+}
+
 impl Detail {
     /// `varying` if either is.
     #[must_use]

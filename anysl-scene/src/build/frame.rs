@@ -23,6 +23,9 @@ pub struct FrameDesc {
     pub meshes: Vec<Mesh>,
     /// The primitives placed in the world, each with an index into `surfaces`.
     pub instances: Vec<Instance>,
+    /// Per instance, its surface shader's "shader" space (the object-to-world transform
+    /// current at the `Surface` request).
+    pub shader_spaces: Vec<Mat4>,
     /// The distinct surface shader calls (name + parameters).
     pub surfaces: Vec<ShaderCall>,
     /// The light sources that illuminate some primitive, in the order declared.

@@ -88,6 +88,8 @@ struct Attributes {
     /// Orientation "inside" (after `ReverseOrientation`s), relative to the current transform.
     inside: bool,
     surface: Option<ShaderCall>,
+    /// Shader space: the object-to-world transform current at `Surface`.
+    shader_space: Mat4,
     basis: (Basis, i32, Basis, i32),
     /// `TextureCoordinates`: s,t at the four corners of the unit parameter square.
     st: Option<[f32; 8]>,
@@ -104,6 +106,7 @@ impl Default for Attributes {
             two_sided: true,
             inside: false,
             surface: None,
+            shader_space: Mat4::IDENTITY,
             basis: (bezier.clone(), 3, bezier, 3),
             st: None,
             lights_on: Vec::new(),
@@ -141,6 +144,7 @@ pub struct SceneBuilder {
     // World state.
     meshes: Vec<Mesh>,
     instances: Vec<Instance>,
+    shader_spaces: Vec<Mat4>,
     surfaces: Vec<ShaderCall>,
     lights: Vec<LightCall>,
     light_used: Vec<bool>,
@@ -215,6 +219,7 @@ impl SceneBuilder {
             coordinate_systems: BTreeMap::new(),
             meshes: Vec::new(),
             instances: Vec::new(),
+            shader_spaces: Vec::new(),
             surfaces: Vec::new(),
             lights: Vec::new(),
             light_used: Vec::new(),
@@ -342,6 +347,7 @@ impl SceneBuilder {
             }
         }
         self.instances.push(inst);
+        self.shader_spaces.push(attrs.shader_space);
     }
 
     /// Adds a tessellated primitive under the current transform and attributes.
@@ -486,6 +492,7 @@ impl RibBuilder for SceneBuilder {
             displays: self.displays(),
             meshes: std::mem::take(&mut self.meshes),
             instances: std::mem::take(&mut self.instances),
+            shader_spaces: std::mem::take(&mut self.shader_spaces),
             surfaces: std::mem::take(&mut self.surfaces),
             lights,
             coordinate_systems: std::mem::take(&mut self.coordinate_systems),
@@ -826,6 +833,7 @@ impl RibBuilder for SceneBuilder {
     fn surface(&mut self, loc: &Loc, name: &str, params: &ParamList) -> Result<(), BuildError> {
         self.attrs.surface =
             Some(ShaderCall { name: name.to_string(), params: params.clone(), loc: Some(loc.clone()) });
+        self.attrs.shader_space = self.current_object_to_world();
         ok!()
     }
 

@@ -42,6 +42,7 @@ struct Eval<'a> {
 #[inline(never)]
 fn eval_as<F: ShadingFloat, S: Generated>(s: &S, d: &Directives, lights: &[Light]) -> Vec<(&'static str, Vec<f64>)> {
     let mut ctx = PointContext::new(grid_globals::<F>(d, 0, 0, 1, 1), lights);
+    ctx.spaces = &d.spaces;
     s.eval(&mut ctx, &mut Exec::new())
 }
 

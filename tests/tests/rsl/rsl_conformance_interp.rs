@@ -35,7 +35,13 @@ fn run<F: ShadingFloat>(
     lights: &[Light],
     chunks: usize,
 ) -> Vec<Vec<(String, Vec<f64>)>> {
-    let mut ctxs: Vec<_> = (0..chunks).map(|_| PointContext::new(grid_globals::<F>(d, 0, 0, 1, 1), lights)).collect();
+    let mut ctxs: Vec<_> = (0..chunks)
+        .map(|_| {
+            let mut ctx = PointContext::new(grid_globals::<F>(d, 0, 0, 1, 1), lights);
+            ctx.spaces = &d.spaces;
+            ctx
+        })
+        .collect();
     let masks = vec![F::Mask::splat(true); chunks];
     let fr = run_batch::<F, _>(prog, values, &mut ctxs, &masks);
     let mut out = Vec::new();

@@ -498,20 +498,24 @@ pub fn call<F: ShadingFloat, C: ShadingContext<F>>(
                 fr.write(l.off() + r.min(3) * 4 + c.min(3), k, m, &[x]);
             }
         }
-        Bi::Transform(xf, matrix, _spaces) => {
+        Bi::Transform(xf, matrix, spaces) => {
             let last = args.len() - 1;
             let v = fr.vec3(a(last), k);
+            let table = ctx.as_deref().map_or(anysl_core::Spaces::standard(), |c| c.spaces());
+            let apply = |mx: &Matrix4<F>, v: Vec3<F>| match xf {
+                Xf::Point => mx.transform_point(v),
+                Xf::Vector => mx.transform_vector(v),
+                Xf::Normal => mx.transform_normal(v),
+            };
             let r = if matrix {
+                // transform([fromspace,] m, p): from `fromspace` to current, then by `m`.
                 let mi = args.iter().position(|l| l.width() == 16).unwrap_or(0);
-                let mx = fr.matrix(a(mi), k);
-                match xf {
-                    Xf::Point => mx.transform_point(v),
-                    Xf::Vector => mx.transform_vector(v),
-                    Xf::Normal => mx.transform_normal(v),
-                }
+                let v = if spaces == 1 { apply(&table.to_current(space_str(fr, args[0])), v) } else { v };
+                apply(&fr.matrix(a(mi), k), v)
+            } else if spaces == 2 {
+                apply(&table.between(space_str(fr, args[0]), space_str(fr, args[1])), v)
             } else {
-                // All named coordinate systems coincide with the shading space here.
-                v
+                apply(&table.from_current(space_str(fr, args[0])), v)
             };
             set3!(r);
         }

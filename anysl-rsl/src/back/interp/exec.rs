@@ -3,6 +3,7 @@
 use super::builtins;
 use super::prepare::{Arith, CNode, Cmp, Code, Loc, Program};
 use crate::ir::{Const, Global, Module, ShaderKind};
+use crate::types::BaseType;
 use anysl_core::exec::INTERVAL_LOOP_LIMIT;
 use anysl_core::prelude::*;
 use anysl_core::shader::{ParamError, ParamInfo, ParamType, ParamValue, ShaderMeta, Storage};
@@ -628,16 +629,16 @@ fn exec_op<F: ShadingFloat, C: ShadingContext<F>>(
                 let e = (fr.get(idx, k).lane(0).max(0.0) as u32).min(len.saturating_sub(1));
                 fr.s[dst as usize] = fr.s[(base + e) as usize].clone();
             }
-            Code::FromSpace { dst, space: _, src, color: false, w } if w != 3 => {
-                // A matrix in a named space: every space is the shading space here.
-                for c in 0..w {
-                    let v = fr.get(src + c, k);
-                    fr.set(dst + c, k, v);
-                }
+            Code::FromSpace { dst, space, src, base: BaseType::Matrix } => {
+                // `matrix "name" m`: m in space `name`, then that space to current.
+                let table = run.ctxs.get(k).map_or(anysl_core::Spaces::standard(), |c| c.spaces());
+                let to = table.to_current::<F>(&fr.s[space as usize]);
+                let r = fr.matrix(src, k) * to;
+                fr.set_matrix(dst, k, &r);
             }
-            Code::FromSpace { dst, space, src, color, .. } => {
+            Code::FromSpace { dst, space, src, base } => {
                 let v = fr.vec3(src, k);
-                let out = if color {
+                let out = if base == BaseType::Color {
                     let c = Color::new(v.x, v.y, v.z);
                     let c = match ColorSpace::from_name(&fr.s[space as usize]) {
                         Some(cs) => to_rgb(cs, c),
@@ -645,9 +646,14 @@ fn exec_op<F: ShadingFloat, C: ShadingContext<F>>(
                     };
                     [c.r, c.g, c.b]
                 } else {
-                    // Every coordinate system is the shading ("current") space in these
-                    // renderers: objects are placed by instance transforms before shading.
-                    [v.x, v.y, v.z]
+                    let table = run.ctxs.get(k).map_or(anysl_core::Spaces::standard(), |c| c.spaces());
+                    let to = table.to_current::<F>(&fr.s[space as usize]);
+                    let r = match base {
+                        BaseType::Vector => to.transform_vector(v),
+                        BaseType::Normal => to.transform_normal(v),
+                        _ => to.transform_point(v),
+                    };
+                    [r.x, r.y, r.z]
                 };
                 fr.set3(dst, k, out);
             }

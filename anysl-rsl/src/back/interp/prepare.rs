@@ -112,9 +112,10 @@ pub enum Code {
     LoadElem { dst: u32, base: u32, len: u32, w: u32, idx: u32 },
     /// String array element (uniform index).
     LoadElemStr { dst: u32, base: u32, len: u32, idx: u32 },
-    /// Colour from a named colour space (`color "hsv" (…)`), or a triple from a coordinate
-    /// space (all coordinate spaces are the shading space in these renderers).
-    FromSpace { dst: u32, space: u32, src: u32, color: bool, w: u32 },
+    /// Colour from a named colour space (`color "hsv" (…)`), or a point, vector, normal or
+    /// matrix from a named coordinate system to `current` (`point "object" (…)`); `base` is
+    /// the result's type.
+    FromSpace { dst: u32, space: u32, src: u32, base: BaseType },
     /// A built-in call.
     Call { f: Bi, dst: Loc, args: Vec<Loc>, outs: Vec<Option<Loc>> },
 }
@@ -506,13 +507,7 @@ impl Cx<'_> {
                 let Loc::Str(space, _) = arg(0) else {
                     return Err(unsupported());
                 };
-                Code::FromSpace {
-                    dst: dst.off(),
-                    space,
-                    src: arg(1).off(),
-                    color: inst.ty.base == BaseType::Color,
-                    w: dst.width(),
-                }
+                Code::FromSpace { dst: dst.off(), space, src: arg(1).off(), base: inst.ty.base }
             }
             Op::Call { name, outputs, .. } => {
                 let arg_tys: Vec<(BaseType, Option<u32>)> = inst

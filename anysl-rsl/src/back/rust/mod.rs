@@ -866,6 +866,13 @@ impl<'a> Gen<'a> {
                 self.line("let g = *ctx.globals();");
             }
         }
+        if m.uses_spaces() {
+            // A copy (a reference count) so that the context stays free for `illuminance`.
+            match m.kind {
+                ShaderKind::Light => self.line(&format!("let spaces = {}::Spaces::standard();", self.k)),
+                _ => self.line("let spaces = ctx.spaces().clone();"),
+            }
+        }
         self.line("let no: F::Mask = Mask::splat(false);");
         self.line("let mut m0 = e.mask();");
         self.line("let mut lit = no;");
@@ -2009,8 +2016,14 @@ impl<'a> Gen<'a> {
                 if ty.base == BaseType::Color {
                     format!("{{ let c = {x}; match ColorSpace::from_name({space}) {{ Some(cs) => to_rgb(cs, c), None => c }} }}")
                 } else {
-                    // Every coordinate system is the shading space in these renderers.
-                    format!("{{ let _ = {space}; {x} }}")
+                    let t = if r == Repr::Scalar { "f64" } else { "F" };
+                    let to = format!("{}.to_current::<{t}>({space})", self.spaces_table());
+                    match ty.base {
+                        BaseType::Matrix => format!("({x} * {to})"),
+                        BaseType::Vector => format!("{to}.transform_vector({x})"),
+                        BaseType::Normal => format!("{to}.transform_normal({x})"),
+                        _ => format!("{to}.transform_point({x})"),
+                    }
                 }
             }
             Op::Call { name, overload, outputs } => {
@@ -2018,6 +2031,13 @@ impl<'a> Gen<'a> {
                 self.call(v, &name, overload, &outputs, r)?
             }
         })
+    }
+
+    /// The named coordinate systems: the variable `run` declares when the shader names a
+    /// space (the context's table, or for light shaders, which run without one, the standard
+    /// table).
+    fn spaces_table(&self) -> String {
+        "spaces".into()
     }
 
     fn binary(&self, op: BinOp, args: &[Value], r: Repr) -> String {
@@ -2418,9 +2438,30 @@ impl<'a> Gen<'a> {
                             ("ntransform", _) | (_, B::Normal) => "transform_normal",
                             _ => "transform_point",
                         };
-                        format!("{}.{f}({last})", a(mi))
+                        let strings = args.iter().filter(|x| self.arg_ty(**x).base == B::String).count();
+                        if strings == 1 {
+                            // transform(fromspace, m, p): from `fromspace` to current, then by `m`.
+                            let t = if r == Repr::Scalar { "f64" } else { "F" };
+                            let to = format!("{}.to_current::<{t}>({})", self.spaces_table(), a(0));
+                            format!("{}.{f}({to}.{f}({last}))", a(mi))
+                        } else {
+                            format!("{}.{f}({last})", a(mi))
+                        }
                     }
-                    None => last,
+                    None => {
+                        let f = match (name, ret) {
+                            ("vtransform", _) | (_, B::Vector) => "transform_vector",
+                            ("ntransform", _) | (_, B::Normal) => "transform_normal",
+                            _ => "transform_point",
+                        };
+                        let t = if r == Repr::Scalar { "f64" } else { "F" };
+                        let m = if n == 3 {
+                            format!("{}.between::<{t}>({}, {})", self.spaces_table(), a(0), a(1))
+                        } else {
+                            format!("{}.from_current::<{t}>({})", self.spaces_table(), a(0))
+                        };
+                        format!("{m}.{f}({last})")
+                    }
                 }
             }
             "ctransform" => {
