@@ -1092,6 +1092,19 @@ impl<'c, 'm> Cg<'c, 'm> {
         let inp = self.spill(args, uni);
         let out = self.out_buf(n_out, uni);
         let mask = self.mask_buf_of(m);
+        self.call_rt_fn(fnp, mask, inp, out, aux);
+        self.unspill(out, n_out, uni)
+    }
+
+    /// Calls a function of the runtime ABI (`ctx, mask, inputs, outputs, aux`).
+    fn call_rt_fn(
+        &self,
+        fnp: PointerValue<'c>,
+        mask: PointerValue<'c>,
+        inp: PointerValue<'c>,
+        out: PointerValue<'c>,
+        aux: u32,
+    ) {
         let ctx = self.st().ctx;
         let callee = CallableValue::try_from(fnp).expect("callable");
         self.b
@@ -1101,7 +1114,6 @@ impl<'c, 'm> Cg<'c, 'm> {
                 "",
             )
             .expect("call");
-        self.unspill(out, n_out, uni)
     }
 
     /// Emits call `v`: threaded (a call of its target-library function) or inline.
@@ -1345,16 +1357,7 @@ impl<'c, 'm> Cg<'c, 'm> {
         let out = self.out_buf(16, true);
         let mask = self.mask_buf();
         let fnp = self.host_fn_ptr(host::SPACE, self.rt_fn_type());
-        let ctx = self.st().ctx;
-        let aux = kind | (names.len() as u32) << 2;
-        let callee = CallableValue::try_from(fnp).expect("callable");
-        self.b
-            .build_call(
-                callee,
-                &[ctx.into(), mask.into(), inp.into(), out.into(), self.i32c(u64::from(aux)).into()],
-                "",
-            )
-            .expect("call");
+        self.call_rt_fn(fnp, mask, inp, out, kind | (names.len() as u32) << 2);
         self.unspill(out, 16, true)
     }
 

@@ -376,25 +376,38 @@ impl<'c> Cg<'c, '_> {
     /// ([`Cg::k_pow_halves`]), the exponential of the logarithm for the others, each on a
     /// branch taken when some lane needs it.
     fn k_pow(&self, x: V<'c>, y: V<'c>) -> V<'c> {
-        use FloatPredicate::{OEQ, OLE, OLT};
+        use FloatPredicate::{OEQ, OLE};
         let n2 = self.kadd(y, y);
-        let sign_clear = self.knot(self.ksign_set(x));
         let halves = self.kand(
-            self.kand(
-                self.kand(sign_clear, self.kcmp(OLT, x, self.kf(f32::INFINITY))),
-                self.kcmp(OLE, self.kf(0.0), n2),
-            ),
-            self.kand(self.kcmp(OLE, n2, self.kf(32.0)), self.kcmp(OEQ, self.kintr("llvm.roundeven", n2), n2)),
+            self.kand(self.kcmp(OLE, self.kf(0.0), n2), self.kcmp(OLE, n2, self.kf(32.0))),
+            self.kcmp(OEQ, self.kintr("llvm.roundeven", n2), n2),
         );
-        let none = self.kcmp(FloatPredicate::PredicateFalse, x, x);
-        let rf = self.k_when_any(halves, vec![self.kf(0.0), none], |cg| {
-            let r = cg.k_pow_halves(x, n2);
-            let in_range = cg.kand(cg.kcmp(OLE, cg.kf(kc::POW_HALVES_MIN), r), cg.kcmp(OLT, r, cg.kf(f32::INFINITY)));
-            let fast = cg.kand(halves, cg.kor(in_range, cg.kcmp(OEQ, x, cg.kf(0.0))));
-            vec![r, fast]
-        });
-        let (r, fast) = (rf[0], rf[1]);
+        let r = self.k_when_any(halves, vec![self.kf(0.0)], |cg| vec![cg.k_pow_halves(x, n2)])[0];
+        self.k_pow_keep(x, y, r, halves)
+    }
+
+    /// The powered `r` for the lanes of `halves` with a base in `[+0, inf)` whose result is in
+    /// range (or whose base is 0), `2^(y·log2|x|)` for the others (the end of the library's
+    /// `pow`).
+    fn k_pow_keep(&self, x: V<'c>, y: V<'c>, r: V<'c>, halves: V<'c>) -> V<'c> {
+        use FloatPredicate::{OEQ, OLE, OLT};
+        let inf = self.kf(f32::INFINITY);
+        let in_range = self.kand(self.kcmp(OLE, self.kf(kc::POW_HALVES_MIN), r), self.kcmp(OLT, r, inf));
+        let ok_base = self.kand(self.knot(self.ksign_set(x)), self.kcmp(OLT, x, inf));
+        let fast = self.kand(halves, self.kand(ok_base, self.kor(in_range, self.kcmp(OEQ, x, self.kf(0.0)))));
         self.k_when_any(self.knot(fast), vec![r], |cg| vec![cg.ksel(fast, r, cg.k_pow_exp_log(x, y))])[0]
+    }
+
+    /// `(rh, rl)·(bh, bl)` as an unnormalized double-f32 (the library's `dd_mul`).
+    fn k_dd_mul(&self, rh: V<'c>, rl: V<'c>, bh: V<'c>, bl: V<'c>) -> (V<'c>, V<'c>) {
+        let p = self.kmul(rh, bh);
+        (p, self.kfma(rl, bh, self.kfma(rh, bl, self.kfma(rh, bh, self.kneg(p)))))
+    }
+
+    /// `(bh, bl)²` (the library's `dd_sq`).
+    fn k_dd_sq(&self, bh: V<'c>, bl: V<'c>) -> (V<'c>, V<'c>) {
+        let p = self.kmul(bh, bh);
+        (p, self.kfma(self.kadd(bh, bh), bl, self.kfma(bh, bh, self.kneg(p))))
     }
 
     /// `x^y` for a uniform `y` (scalar `y`, splatted `ys`): for `2y` an integer in `[0, 32]`
@@ -402,7 +415,7 @@ impl<'c> Cg<'c, '_> {
     /// `pow_halves_uniform`), with the lanes out of its range through the exponential of the
     /// logarithm; else that exponential for every lane.
     fn k_pow_uniform(&self, x: V<'c>, y: inkwell::values::FloatValue<'c>, ys: V<'c>) -> V<'c> {
-        use FloatPredicate::{OEQ, OLE, OLT};
+        use FloatPredicate::{OEQ, OLE};
         let b = &self.b;
         let n0 = b.build_float_add(y, y, "").expect("fadd");
         let k0 = |v: f64| self.f32t.const_float(v);
@@ -432,8 +445,8 @@ impl<'c> Cg<'c, '_> {
                 .build_int_compare(IntPredicate::NE, b.build_and(rest, one, "").expect("and"), zero, "")
                 .expect("icmp");
             let r = self.k_when(bit, vec![rh, rl], |cg| {
-                let p = cg.kmul(rh, bh);
-                vec![p, cg.kfma(rl, bh, cg.kfma(rh, bl, cg.kfma(rh, bh, cg.kneg(p))))]
+                let (p, e) = cg.k_dd_mul(rh, rl, bh, bl);
+                vec![p, e]
             });
             (rh, rl) = (r[0], r[1]);
             rest = b.build_right_shift(rest, one, false, "").expect("lshr");
@@ -442,24 +455,19 @@ impl<'c> Cg<'c, '_> {
             }
             let more = b.build_int_compare(IntPredicate::NE, rest, zero, "").expect("icmp");
             let sq = self.k_when(more, vec![bh, bl], |cg| {
-                let p = cg.kmul(bh, bh);
-                vec![p, cg.kfma(cg.kadd(bh, bh), bl, cg.kfma(bh, bh, cg.kneg(p)))]
+                let (p, e) = cg.k_dd_sq(bh, bl);
+                vec![p, e]
             });
             (bh, bl) = (sq[0], sq[1]);
         }
         let odd = b.build_int_compare(IntPredicate::NE, b.build_and(n, one, "").expect("and"), zero, "").expect("icmp");
         let r = self.k_when(odd, vec![rh, rl], |cg| {
-            let s = cg.kintr("llvm.sqrt", x);
-            let p = cg.kmul(rh, s);
-            let z = cg.kf(0.0);
-            vec![p, cg.kfma(rl, s, cg.kfma(rh, z, cg.kfma(rh, s, cg.kneg(p))))]
+            let (p, e) = cg.k_dd_mul(rh, rl, cg.kintr("llvm.sqrt", x), cg.kf(0.0));
+            vec![p, e]
         });
         let r = self.kadd(r[0], r[1]);
-        let in_range =
-            self.kand(self.kcmp(OLE, self.kf(kc::POW_HALVES_MIN), r), self.kcmp(OLT, r, self.kf(f32::INFINITY)));
-        let ok_base = self.kand(self.knot(self.ksign_set(x)), self.kcmp(OLT, x, self.kf(f32::INFINITY)));
-        let fast = self.kand(ok_base, self.kor(in_range, self.kcmp(OEQ, x, self.kf(0.0))));
-        let halves = self.k_when_any(self.knot(fast), vec![r], |cg| vec![cg.ksel(fast, r, cg.k_pow_exp_log(x, ys))])[0];
+        let every = self.kcmp(FloatPredicate::PredicateTrue, x, x);
+        let halves = self.k_pow_keep(x, ys, r, every);
         let halves_end = b.get_insert_block().expect("positioned");
         b.build_unconditional_branch(join).expect("br");
         b.position_at_end(else_bb);
@@ -482,8 +490,7 @@ impl<'c> Cg<'c, '_> {
         for step in 0..5 {
             let bit = self.kodd(rest);
             let r = self.k_when_any(bit, vec![rh, rl], |cg| {
-                let p = cg.kmul(rh, bh);
-                let e = cg.kfma(rl, bh, cg.kfma(rh, bl, cg.kfma(rh, bh, cg.kneg(p))));
+                let (p, e) = cg.k_dd_mul(rh, rl, bh, bl);
                 vec![cg.ksel(bit, p, rh), cg.ksel(bit, e, rl)]
             });
             (rh, rl) = (r[0], r[1]);
@@ -493,16 +500,14 @@ impl<'c> Cg<'c, '_> {
             }
             let more = self.b.build_int_compare(IntPredicate::NE, rest, self.ki(0), "").expect("icmp");
             let b = self.k_when_any(more, vec![bh, bl], |cg| {
-                let p = cg.kmul(bh, bh);
-                vec![p, cg.kfma(cg.kadd(bh, bh), bl, cg.kfma(bh, bh, cg.kneg(p)))]
+                let (p, e) = cg.k_dd_sq(bh, bl);
+                vec![p, e]
             });
             (bh, bl) = (b[0], b[1]);
         }
         let half = self.kodd(n);
         let r = self.k_when_any(half, vec![rh, rl], |cg| {
-            let s = cg.kintr("llvm.sqrt", x);
-            let p = cg.kmul(rh, s);
-            let e = cg.kfma(rl, s, cg.kfma(rh, cg.kf(0.0), cg.kfma(rh, s, cg.kneg(p))));
+            let (p, e) = cg.k_dd_mul(rh, rl, cg.kintr("llvm.sqrt", x), cg.kf(0.0));
             vec![cg.ksel(half, p, rh), cg.ksel(half, e, rl)]
         });
         self.kadd(r[0], r[1])
