@@ -561,6 +561,15 @@ pub trait ShadingContext<F: ShadingFloat> {
     fn spaces(&self) -> &Spaces {
         Spaces::standard()
     }
+
+    /// The globals, writable, when the context lets a shading loop outside the renderer set
+    /// them packet by packet (a JIT-compiled loop over a point set, which then finds the
+    /// values the context's own methods read where they look). `None` (the default): the
+    /// context sets them itself.
+    #[inline(always)]
+    fn globals_mut(&mut self) -> Option<&mut Globals<F>> {
+        None
+    }
 }
 
 /// [`ShadingContext`] without generic methods, so that it can be a trait object: code that
@@ -786,6 +795,11 @@ impl<F: ShadingFloat, L: LightSource> ShadingContext<F> for PointContext<'_, F, 
     #[inline(always)]
     fn globals(&self) -> &Globals<F> {
         &self.globals
+    }
+
+    #[inline(always)]
+    fn globals_mut(&mut self) -> Option<&mut Globals<F>> {
+        Some(&mut self.globals)
     }
 
     #[inline(always)]

@@ -44,7 +44,25 @@ fn main() {
         let (sc, sh, l, jit) = (&scene, &sh, &lights, &jit);
         type P8x4 = Pair<Pair<F32x8>>;
         type P16x2 = Pair<F32x16>;
-        let runs: [ProbeRun<'_>; 8] = [
+        // The points entry (`JitShader::shade_points`): the loop over the packets compiled
+        // with the shader.
+        fn points<F: anysl_core::ShadingFloat>(
+            sc: &WorkloadScene,
+            jit: &JitShader,
+            l: &[LightData],
+            [r, g, b]: &mut [Vec<f32>; 3],
+        ) {
+            use anysl_jit::rsl::ir::Global;
+            let n = r.len();
+            let mut ctx = anysl_core::PointContext::new(sc.globals::<F>(0), l);
+            let [p, nn, i] = sc.varying_f32(0, n);
+            let varying: [(Global, &[&[f32]]); 4] =
+                [(Global::P, &p), (Global::N, &nn), (Global::Ng, &nn), (Global::I, &i)];
+            assert!(jit
+                .shade_points::<F, _>(&mut ctx, &varying, &mut [r.as_mut_slice(), g.as_mut_slice(), b.as_mut_slice()])
+                .expect("points entry"));
+        }
+        let runs: [ProbeRun<'_>; 10] = [
             ("aot-x8", Box::new(|[r, g, b]: &mut _| sc.shade::<F32x8, LightData>(sh, l, 0, [r, g, b]))),
             ("jit-x8", Box::new(|[r, g, b]: &mut _| sc.shade_surface::<F32x8, _, LightData>(jit, l, 0, [r, g, b]))),
             ("aot-x16", Box::new(|[r, g, b]: &mut _| sc.shade::<F32x16, LightData>(sh, l, 0, [r, g, b]))),
@@ -53,6 +71,8 @@ fn main() {
             ("jit-x8x4", Box::new(|[r, g, b]: &mut _| sc.shade_surface::<P8x4, _, LightData>(jit, l, 0, [r, g, b]))),
             ("aot-x16x2", Box::new(|[r, g, b]: &mut _| sc.shade::<P16x2, LightData>(sh, l, 0, [r, g, b]))),
             ("jit-x16x2", Box::new(|[r, g, b]: &mut _| sc.shade_surface::<P16x2, _, LightData>(jit, l, 0, [r, g, b]))),
+            ("jitp-x8x4", Box::new(|out: &mut _| points::<P8x4>(sc, jit, l, out))),
+            ("jitp-x16x2", Box::new(|out: &mut _| points::<P16x2>(sc, jit, l, out))),
         ];
         let rows = env("ROWS");
         let runs: Vec<ProbeRun<'_>> = runs

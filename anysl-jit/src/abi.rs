@@ -44,6 +44,23 @@ pub type ShadeFn = unsafe extern "C" fn(
     params: *const f32,
 );
 
+/// A shader compiled as a loop over a point set ([`crate::compile_points`]): `(packets, src,
+/// out, globals, ctx, host table, parameter block)`. For packet `j`, each varying global
+/// component `k` (of [`crate::PointsLayout::varying`]) is read from `src[k] + j·lanes` and
+/// stored into `globals` (the context's own `Globals<F>`, at the offsets of
+/// [`GlobalsLayout`]) before the shader runs on it with every lane active; output component
+/// `k` (`Ci` r, g, b, then `Oi`) is written to `out[k] + j·lanes`. Components that do not vary
+/// are read from `globals` as the caller left them.
+pub type PointsFn = unsafe extern "C" fn(
+    packets: u64,
+    src: *const *const f32,
+    out: *const *mut f32,
+    globals: *mut f32,
+    ctx: *mut c_void,
+    host: *const usize,
+    params: *const f32,
+);
+
 /// The globals and the number of their first component (see [`GlobalsLayout`]).
 pub const GLOBAL_ORDER: [(anysl_rsl::ir::Global, usize); 15] = {
     use anysl_rsl::ir::Global as G;

@@ -16,6 +16,9 @@
 mod lights;
 mod math;
 mod noise;
+mod points;
+
+pub use points::POINTS_NAME;
 
 use crate::abi::{self, host, GLOBAL_ORDER};
 use crate::rt::{self, RtKind};

@@ -30,7 +30,7 @@ mod shader;
 pub use anysl_rsl as rsl;
 pub use shader::{variant_of, JitShader};
 
-use abi::ShadeFn;
+use abi::{PointsFn, ShadeFn};
 use anysl_ad::Dual;
 use anysl_rsl::ir::{Const, Module};
 use anysl_simd::{F32x16, F32x4, F32x8, Pair};
@@ -354,6 +354,87 @@ pub fn compile_with(
     opts: &JitOptions,
     keep_ir: bool,
 ) -> Result<CompiledShader, JitError> {
+    let (addr, stats, llvm_ir, owned) = build(module, values, variant, opts, keep_ir, None)?;
+    // SAFETY: the function was generated with the `ShadeFn` signature.
+    let f: ShadeFn = unsafe { std::mem::transmute::<usize, ShadeFn>(addr) };
+    Ok(CompiledShader { f, variant, stats, llvm_ir, _owned: owned })
+}
+
+/// What a points entry ([`abi::PointsFn`]) reads and writes: the global components read
+/// from the caller's arrays (bit `k` for component `k`, numbered as in
+/// [`abi::GLOBAL_ORDER`]) and the number of output components written (3: `Ci`; 6: `Ci`
+/// and `Oi`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct PointsLayout {
+    /// The varying global components.
+    pub varying: u64,
+    /// Output components written (1 to 6).
+    pub outputs: usize,
+}
+
+/// A shader compiled as a loop over the packets of a point set ([`abi::PointsFn`]).
+pub struct CompiledPoints {
+    /// The entry point.
+    pub f: PointsFn,
+    /// The variant (packet type).
+    pub variant: Variant,
+    /// What the entry reads and writes.
+    pub layout: PointsLayout,
+    /// Stage times and instruction counts.
+    pub stats: CompileStats,
+    /// The optimized LLVM IR, when requested.
+    pub llvm_ir: Option<String>,
+    _owned: Owned,
+}
+
+impl fmt::Debug for CompiledPoints {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("CompiledPoints")
+            .field("variant", &self.variant)
+            .field("layout", &self.layout)
+            .field("stats", &self.stats)
+            .finish()
+    }
+}
+
+/// Compiles a lowered module as a points entry ([`abi::PointsFn`]) for `variant`.
+///
+/// # Errors
+/// As [`compile`]; dual-number variants have no points entry; `layout` names components
+/// past [`abi::GLOBAL_VALUES`] or more than six outputs.
+pub fn compile_points(
+    module: &Module,
+    values: &[Const],
+    variant: Variant,
+    opts: &JitOptions,
+    layout: PointsLayout,
+    keep_ir: bool,
+) -> Result<CompiledPoints, JitError> {
+    if layout.varying >> abi::GLOBAL_VALUES != 0 || !(1..=6).contains(&layout.outputs) {
+        return Err(JitError(format!(
+            "points layout {layout:?}: components 0..{} and 1..=6 outputs",
+            abi::GLOBAL_VALUES
+        )));
+    }
+    if module.kind != anysl_rsl::ir::ShaderKind::Surface {
+        return Err(JitError(format!("the points entry shades surface shaders, not {:?}", module.kind)));
+    }
+    let (addr, stats, llvm_ir, owned) = build(module, values, variant, opts, keep_ir, Some(layout))?;
+    // SAFETY: the function was generated with the `PointsFn` signature.
+    let f: PointsFn = unsafe { std::mem::transmute::<usize, PointsFn>(addr) };
+    Ok(CompiledPoints { f, variant, layout, stats, llvm_ir, _owned: owned })
+}
+
+/// Compiles `module` to machine code: the shade function, or with `points` the points entry
+/// around it. Returns the entry's address.
+fn build(
+    module: &Module,
+    values: &[Const],
+    variant: Variant,
+    opts: &JitOptions,
+    keep_ir: bool,
+    points: Option<PointsLayout>,
+) -> Result<(usize, CompileStats, Option<String>, Owned), JitError> {
     init_llvm();
     let mut stats = CompileStats::default();
     let t0 = Instant::now();
@@ -390,7 +471,14 @@ pub fn compile_with(
         cg.fn_attrs.push(("prefer-vector-width".into(), bits.clone()));
         cg.fn_attrs.push(("min-legal-vector-width".into(), bits));
     }
-    cg.generate(&m, values).map_err(|e| JitError(e.0))?;
+    let shade = cg.generate(&m, values).map_err(|e| JitError(e.0))?;
+    let entry = match points {
+        Some(p) => {
+            cg.generate_points(shade, p.varying, p.outputs)?;
+            codegen::POINTS_NAME
+        }
+        None => Cg::shade_name(),
+    };
     stats.threaded_fns = cg.threaded_fns;
     let llmod = std::mem::replace(&mut cg.m, cref.create_module("empty"));
     drop(cg);
@@ -420,15 +508,7 @@ pub fn compile_with(
 
     let t3 = Instant::now();
     let ee = llmod.create_jit_execution_engine(level).map_err(|e| JitError(e.to_string()))?;
-    let addr = ee.get_function_address(Cg::shade_name()).map_err(|e| JitError(e.to_string()))?;
+    let addr = ee.get_function_address(entry).map_err(|e| JitError(e.to_string()))?;
     stats.times_ms.push(("codegen", t3.elapsed().as_secs_f64() * 1e3));
-    // SAFETY: the function was generated with the `ShadeFn` signature.
-    let f: ShadeFn = unsafe { std::mem::transmute::<usize, ShadeFn>(addr) };
-    Ok(CompiledShader {
-        f,
-        variant,
-        stats,
-        llvm_ir,
-        _owned: Owned { ee: Some(ee), module: Some(llmod), ctx: Some(ctx) },
-    })
+    Ok((addr, stats, llvm_ir, Owned { ee: Some(ee), module: Some(llmod), ctx: Some(ctx) }))
 }

@@ -2,18 +2,19 @@
 //! boundary as every other shader.
 
 use crate::abi::JitFloat;
+use crate::abi::{GLOBAL_ORDER, GLOBAL_VALUES};
 use crate::rt::{cast, HostCtx, HostTable};
-use crate::{compile, CompiledShader, JitError, JitOptions, Variant};
+use crate::{compile, compile_points, CompiledPoints, CompiledShader, JitError, JitOptions, PointsLayout, Variant};
 use anysl_ad::Dual;
 use anysl_core::prelude::*;
 use anysl_core::shader::{ParamError, ParamValue, ShaderMeta};
 use anysl_rsl::back::interp::{InterpShader, Program};
-use anysl_rsl::ir::{Const, Module};
+use anysl_rsl::ir::{Const, Global, Module};
 use anysl_rsl::CompileOptions;
 use anysl_simd::{F32x16, F32x4, F32x8, Pair};
 use std::any::TypeId;
 use std::path::Path;
-use std::sync::{Arc, OnceLock};
+use std::sync::{Arc, Mutex, OnceLock};
 
 /// The JIT variant that shades with float type `F`, if any.
 #[must_use]
@@ -36,6 +37,9 @@ pub fn variant_of<F: 'static>() -> Option<Variant> {
 
 type Slot = OnceLock<Result<Arc<CompiledShader>, String>>;
 
+/// The points entries compiled so far: (variant, layout) → machine code or the error.
+type PointsCache = Mutex<Vec<(Variant, PointsLayout, Result<Arc<CompiledPoints>, String>)>>;
+
 /// A surface shader compiled at run time. Each float type's variant is compiled on first use
 /// and cached; float types the JIT has no variant for (f64, intervals) run on the
 /// interpreter.
@@ -47,6 +51,7 @@ pub struct JitShader {
     /// Compiler settings.
     pub opts: JitOptions,
     variants: [Slot; Variant::ALL.len()],
+    points: PointsCache,
     interp: InterpShader,
     /// `values` as the run-time parameter block that code compiled without specialization
     /// reads ([`crate::codegen::param_block`]).
@@ -60,6 +65,7 @@ impl Clone for JitShader {
             values: self.values.clone(),
             opts: self.opts.clone(),
             variants: Default::default(),
+            points: PointsCache::default(),
             interp: self.interp.clone(),
             param_block: self.param_block.clone(),
         }
@@ -89,6 +95,7 @@ impl JitShader {
             values,
             opts,
             variants: Default::default(),
+            points: PointsCache::default(),
             interp: InterpShader::new(Arc::new(program)),
         })
     }
@@ -133,6 +140,133 @@ impl JitShader {
         self.variants[v.index()]
             .get_or_init(|| compile(&self.module, &self.values, v, &self.opts).map(Arc::new).map_err(|e| e.to_string()))
             .as_ref()
+    }
+
+    /// The points entry of variant `v` for `layout` (compiling it now if needed).
+    ///
+    /// # Errors
+    /// When the shader cannot be compiled so ([`compile_points`]).
+    pub fn points_variant(&self, v: Variant, layout: PointsLayout) -> Result<Arc<CompiledPoints>, String> {
+        let mut cache = self.points.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+        if let Some((_, _, r)) = cache.iter().find(|(cv, cl, _)| *cv == v && *cl == layout) {
+            return r.clone();
+        }
+        let r = compile_points(&self.module, &self.values, v, &self.opts, layout, false)
+            .map(Arc::new)
+            .map_err(|e| e.to_string());
+        cache.push((v, layout, r.clone()));
+        r
+    }
+
+    /// Shades a point set with the compiled loop of [`crate::abi::PointsFn`]: the points
+    /// `0 .. n` (`n` the length of each output array, a multiple of `F::LANES`) in packets of
+    /// `F::LANES`, every lane active. `varying` gives, for each global that differs from point
+    /// to point, one array of `n` values per component (`P`: x, y, z; `s`: one); the other
+    /// globals are the context's, the same for every packet. `out` receives `Ci` (r, g, b) and,
+    /// with six arrays, `Oi`. The result is what [`SurfaceShader::shade`] gives packet by
+    /// packet with the context's globals set to each packet's values, bit for bit.
+    ///
+    /// Returns `Ok(false)` without shading when this float type has no points entry (dual
+    /// numbers, intervals, `f64`) or the context does not lend its globals
+    /// ([`ShadingContext::globals_mut`]): the caller shades packet by packet then.
+    ///
+    /// # Errors
+    /// Arrays of the wrong length or number, a global the compiled code does not read from the
+    /// renderer's globals, or a shader the points entry cannot be compiled for.
+    pub fn shade_points<F: ShadingFloat, C: ShadingContext<F>>(
+        &self,
+        ctx: &mut C,
+        varying: &[(Global, &[&[f32]])],
+        out: &mut [&mut [f32]],
+    ) -> Result<bool, JitError> {
+        let Some(v) = variant_of::<F>().filter(|v| !v.dual()) else { return Ok(false) };
+        if ctx.globals_mut().is_none() {
+            return Ok(false);
+        }
+        let n = out.first().map_or(0, |o| o.len());
+        if out.is_empty() || out.len() > 6 || out.iter().any(|o| o.len() != n) || n % F::LANES != 0 {
+            let lens: Vec<usize> = out.iter().map(|o| o.len()).collect();
+            return Err(JitError(format!(
+                "points: 1 to 6 output arrays of one length, a multiple of {} lanes (got {lens:?})",
+                F::LANES
+            )));
+        }
+        let mut src = [core::ptr::null::<f32>(); GLOBAL_VALUES];
+        let mut mask = 0u64;
+        for (g, comps) in varying {
+            let Some(&(_, first)) = GLOBAL_ORDER.iter().find(|(x, _)| x == g) else {
+                return Err(JitError(format!("points: {g:?} is not a global the renderer supplies")));
+            };
+            let nc = g.ty().base.components();
+            if comps.len() != nc || comps.iter().any(|a| a.len() != n) {
+                return Err(JitError(format!("points: {g:?} needs {nc} arrays of {n} values")));
+            }
+            for (c, a) in comps.iter().enumerate() {
+                src[first + c] = a.as_ptr();
+                mask |= 1 << (first + c);
+            }
+        }
+        if n == 0 {
+            return Ok(true);
+        }
+        let cp = self.points_variant(v, PointsLayout { varying: mask, outputs: out.len() }).map_err(JitError)?;
+        let mut dst = [core::ptr::null_mut::<f32>(); 6];
+        for (d, o) in dst.iter_mut().zip(out.iter_mut()) {
+            *d = o.as_mut_ptr();
+        }
+        let packets = n / F::LANES;
+        macro_rules! arm {
+            ($G:ty) => {
+                if const { may_be::<F, $G>() } {
+                    self.run_points::<F, C, $G>(&cp, ctx, &src, &dst, packets);
+                    return Ok(true);
+                }
+            };
+        }
+        match v {
+            Variant::F32 => arm!(f32),
+            Variant::X4 => arm!(F32x4),
+            Variant::X8 => arm!(F32x8),
+            Variant::X16 => arm!(F32x16),
+            Variant::X8x4 => arm!(Pair<Pair<F32x8>>),
+            Variant::X16x2 => arm!(Pair<F32x16>),
+            Variant::DualF32 | Variant::DualX8 => {}
+        }
+        unreachable!("variant_of::<{}>() named {v:?}, a type of other lanes or size", core::any::type_name::<F>())
+    }
+
+    fn run_points<F: ShadingFloat, C: ShadingContext<F>, G: JitFloat>(
+        &self,
+        cp: &CompiledPoints,
+        ctx: &mut C,
+        src: &[*const f32; GLOBAL_VALUES],
+        dst: &[*mut f32; 6],
+        packets: usize,
+    ) {
+        // The compiled loop writes each packet's varying globals into the context's own
+        // `Globals` (where the host callbacks that read the context find them) and reads them
+        // back there; no Rust code reads through this pointer while it runs.
+        let g = ctx.globals_mut().expect("checked by shade_points") as *mut Globals<F>;
+        let host = HostTable::<F, C, G>::table();
+        let (lights, n_lights) = match ctx.lights_as_data() {
+            Some(l) => (l.as_ptr(), l.len()),
+            None => (core::ptr::null(), 0),
+        };
+        let mut hc = HostCtx { lights, n_lights, ctx, lit: None };
+        // SAFETY: the arrays hold `packets · F::LANES` values each (`shade_points`), the
+        // globals have the layout the code was compiled for, and `ctx` is a `C`, which is what
+        // the host table's shims take.
+        unsafe {
+            (cp.f)(
+                packets as u64,
+                src.as_ptr(),
+                dst.as_ptr(),
+                g.cast::<f32>(),
+                (&mut hc as *mut HostCtx<F, C>).cast(),
+                host,
+                self.param_block.as_ptr(),
+            );
+        }
     }
 
     /// The variants compiled so far.
@@ -211,6 +345,7 @@ impl Shader for JitShader {
         if self.opts.specialize {
             // Parameters are compiled in: recompile on next use.
             self.variants = Default::default();
+            self.points = PointsCache::default();
         }
         Ok(())
     }

@@ -263,23 +263,52 @@ impl System for Jit {
             Entry::Vacant(e) => e.insert(Self::compile(shader, self.variant)?),
         };
         let (scene, lights) = (env.scene, env.lights);
+        // The points entry is compiled on the first chunk; an error is the row's.
+        let fail = Mutex::new(None);
+        let run = |r: Result<(), String>| {
+            if let Err(e) = r {
+                *fail.lock().unwrap_or_else(PoisonError::into_inner) = Some(e);
+            }
+        };
+        macro_rules! points {
+            ($F:ty) => {
+                env.for_chunks(out, |s, [r, g, b]| run(jit_points::<$F>(scene, jit, lights, s, &mut [r, g, b])))
+            };
+        }
         match self.variant {
-            Variant::F32 => env.for_chunks(out, |start, out| scene.shade_surface::<f32, _, _>(jit, lights, start, out)),
-            Variant::X8 => {
-                env.for_chunks(out, |start, out| scene.shade_surface::<F32x8, _, _>(jit, lights, start, out))
-            }
-            Variant::X16 => {
-                env.for_chunks(out, |start, out| scene.shade_surface::<F32x16, _, _>(jit, lights, start, out))
-            }
-            Variant::X8x4 => env
-                .for_chunks(out, |start, out| scene.shade_surface::<Pair<Pair<F32x8>>, _, _>(jit, lights, start, out)),
-            Variant::X16x2 => {
-                env.for_chunks(out, |start, out| scene.shade_surface::<Pair<F32x16>, _, _>(jit, lights, start, out))
-            }
+            Variant::F32 => points!(f32),
+            Variant::X8 => points!(F32x8),
+            Variant::X16 => points!(F32x16),
+            Variant::X8x4 => points!(Pair<Pair<F32x8>>),
+            Variant::X16x2 => points!(Pair<F32x16>),
             v => return Err(format!("{}: variant {v:?} is not measured", self.name)),
         }
-        Ok(())
+        fail.into_inner().unwrap_or_else(PoisonError::into_inner).map_or(Ok(()), Err)
     }
+}
+
+/// Shades points `start .. start + out[0].len()` of the workload with the JIT's compiled loop
+/// over the point set ([`anysl_jit::JitShader::shade_points`]: `P`, `N` = `Ng` and `I` read
+/// from the scene's arrays, the shader inlined into the loop), or packet by packet where the
+/// float type has no such loop.
+#[cfg(feature = "jit")]
+fn jit_points<F: ShadingFloat>(
+    scene: &WorkloadScene,
+    jit: &anysl_jit::JitShader,
+    lights: &[LightData],
+    start: usize,
+    out: &mut [&mut [f32]; 3],
+) -> Result<(), String> {
+    use anysl_rsl::ir::Global;
+    let len = out[0].len();
+    let mut ctx = anysl_core::PointContext::new(scene.globals::<F>(start), lights);
+    let [p, n, i] = scene.varying_f32(start, len);
+    let varying: [(Global, &[&[f32]]); 4] = [(Global::P, &p), (Global::N, &n), (Global::Ng, &n), (Global::I, &i)];
+    if !jit.shade_points::<F, _>(&mut ctx, &varying, out).map_err(|e| e.to_string())? {
+        let [r, g, b] = out;
+        scene.shade_surface::<F, _, _>(jit, lights, start, [&mut **r, &mut **g, &mut **b]);
+    }
+    Ok(())
 }
 
 /// The systems measured, in table order.

@@ -73,6 +73,8 @@ pub struct WorkloadScene {
     pixels: Vec<u32>,
     f32s: Vec<Vec<f32>>,
     f64s: Vec<Vec<f64>>,
+    /// `I = -V` in f32, component by component (padded like the fields).
+    eye_in: [Vec<f32>; 3],
 }
 
 impl Default for WorkloadScene {
@@ -128,7 +130,8 @@ impl WorkloadScene {
             let last = *a.last().expect("the sphere is in view");
             a.resize(padded, last);
         }
-        Self { n_hit, padded, pixels, f32s, f64s }
+        let eye_in = core::array::from_fn(|c| f32s[V + c].iter().map(|v| -v).collect());
+        Self { n_hit, padded, pixels, f32s, f64s, eye_in }
     }
 
     /// Number of hit points (183 020).
@@ -169,6 +172,20 @@ impl WorkloadScene {
     #[must_use]
     pub fn inputs_f64(&self) -> [&[f64]; 9] {
         core::array::from_fn(|k| self.f64s[k].as_slice())
+    }
+
+    /// The globals that differ from point to point as f32 arrays, points `start .. start +
+    /// len`: `P`, `N` (which is also `Ng`) and `I = -V`, each as its x, y, z arrays — the
+    /// structure-of-arrays form a loop over the point set reads (the JIT's points entry);
+    /// the other globals are [`WorkloadScene::globals`]'s.
+    ///
+    /// # Panics
+    /// When the range passes the padded inputs.
+    #[must_use]
+    pub fn varying_f32(&self, start: usize, len: usize) -> [[&[f32]; 3]; 3] {
+        let r = start..start + len;
+        let f = |k: usize| [0, 1, 2].map(|c| &self.f32s[k + c][r.clone()]);
+        [f(P), f(N), [0, 1, 2].map(|c| &self.eye_in[c][r.clone()])]
     }
 
     /// Points `i .. i + F::LANES` of f32 field `k`: one range check for the packet instead of
