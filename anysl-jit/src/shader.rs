@@ -6,8 +6,10 @@ use crate::abi::{GLOBAL_ORDER, GLOBAL_VALUES};
 use crate::rt::{cast, HostCtx, HostTable};
 use crate::{compile, compile_points, CompiledPoints, CompiledShader, JitError, JitOptions, PointsLayout, Variant};
 use anysl_ad::Dual;
+use anysl_core::points::{PointSet, ShadeOut};
 use anysl_core::prelude::*;
 use anysl_core::shader::{ParamError, ParamValue, ShaderMeta};
+use anysl_core::{LightSource, PointContext};
 use anysl_rsl::back::interp::{InterpShader, Program};
 use anysl_rsl::ir::{Const, Global, Module};
 use anysl_rsl::CompileOptions;
@@ -184,7 +186,7 @@ impl JitShader {
             return Ok(false);
         }
         let n = out.first().map_or(0, |o| o.len());
-        if out.is_empty() || out.len() > 6 || out.iter().any(|o| o.len() != n) || n % F::LANES != 0 {
+        if out.is_empty() || out.len() > 6 || out.iter().any(|o| o.len() != n) || !n.is_multiple_of(F::LANES) {
             let lens: Vec<usize> = out.iter().map(|o| o.len()).collect();
             return Err(JitError(format!(
                 "points: 1 to 6 output arrays of one length, a multiple of {} lanes (got {lens:?})",
@@ -233,6 +235,51 @@ impl JitShader {
             Variant::DualF32 | Variant::DualX8 => {}
         }
         unreachable!("variant_of::<{}>() named {v:?}, a type of other lanes or size", core::any::type_name::<F>())
+    }
+
+    /// [`anysl_core::points::shade_points`] through the points entry ([`JitShader::shade_points`]):
+    /// every global the set holds (`P`, `N` = `Ng`, `I`, `s`, `t`, `u`, `v`, `du`, `dv`,
+    /// `dPdu`, `dPdv`) read from its arrays, `Ci` and `Oi` written to `out`; as there, the
+    /// points past the last whole packet are left alone. `Ok(false)` (nothing shaded) where
+    /// [`JitShader::shade_points`] declines.
+    ///
+    /// # Errors
+    /// As [`JitShader::shade_points`]; `out` not as long as the set.
+    pub fn shade_point_set<F: ShadingFloat, L: LightSource>(
+        &self,
+        lights: &[L],
+        set: &PointSet,
+        out: &mut ShadeOut<f32>,
+    ) -> Result<bool, JitError> {
+        use anysl_core::points::field;
+        if out.channels.iter().any(|c| c.len() != set.len()) {
+            return Err(JitError(format!("points: outputs for {} points", set.len())));
+        }
+        let n = set.len() / F::LANES * F::LANES;
+        if n == 0 {
+            return Ok(true);
+        }
+        let f = |k: usize| &set.field(k)[..n];
+        let t = |k: usize| [f(k), f(k + 1), f(k + 2)];
+        let (p, nn, i, dpdu, dpdv) = (t(field::P), t(field::N), t(field::I), t(field::DPDU), t(field::DPDV));
+        let [s, tt, u, v, du, dv] = [field::S, field::T, field::U, field::V, field::DU, field::DV].map(|k| [f(k)]);
+        let varying: [(Global, &[&[f32]]); 12] = [
+            (Global::P, &p),
+            (Global::N, &nn),
+            (Global::Ng, &nn),
+            (Global::I, &i),
+            (Global::S, &s),
+            (Global::T, &tt),
+            (Global::U, &u),
+            (Global::V, &v),
+            (Global::Du, &du),
+            (Global::Dv, &dv),
+            (Global::DPdu, &dpdu),
+            (Global::DPdv, &dpdv),
+        ];
+        let mut ctx = PointContext::new(set.globals::<F>(0), lights);
+        let mut outs: Vec<&mut [f32]> = out.channels.iter_mut().map(|c| &mut c[..n]).collect();
+        self.shade_points(&mut ctx, &varying, &mut outs)
     }
 
     fn run_points<F: ShadingFloat, C: ShadingContext<F>, G: JitFloat>(

@@ -4,7 +4,7 @@
 //! (`Du`, `calculatenormal`, `random`, the renderer's light loops), every float type with a
 //! points entry, lights the compiled code loops over and lights only the context can run.
 
-use anysl_core::points::{field, PointSet};
+use anysl_core::points::{field, PointSet, ShadeOut};
 use anysl_core::prelude::*;
 use anysl_core::PointContext;
 use anysl_jit::rsl::ir::Global;
@@ -71,31 +71,9 @@ fn by_packet<F: ShadingFloat>(jit: &JitShader, set: &PointSet, lights: &[Light])
 
 /// The same through the points entry: every global the set has, from its arrays.
 fn by_points<F: ShadingFloat>(jit: &JitShader, set: &PointSet, lights: &[Light]) -> Vec<Vec<u32>> {
-    let f = |k: usize| set.field(k);
-    let t = |k: usize| [f(k), f(k + 1), f(k + 2)];
-    let (p, n, i, dpdu, dpdv) = (t(field::P), t(field::N), t(field::I), t(field::DPDU), t(field::DPDV));
-    let one = |k: usize| [f(k)];
-    let (s, tt, u, v, du, dv) =
-        (one(field::S), one(field::T), one(field::U), one(field::V), one(field::DU), one(field::DV));
-    let varying: [(Global, &[&[f32]]); 12] = [
-        (Global::P, &p),
-        (Global::N, &n),
-        (Global::Ng, &n),
-        (Global::I, &i),
-        (Global::S, &s),
-        (Global::T, &tt),
-        (Global::U, &u),
-        (Global::V, &v),
-        (Global::Du, &du),
-        (Global::Dv, &dv),
-        (Global::DPdu, &dpdu),
-        (Global::DPdv, &dpdv),
-    ];
-    let mut ctx = PointContext::new(set.globals::<F>(0), lights);
-    let mut chans: Vec<Vec<f32>> = vec![vec![0.0; set.len()]; 6];
-    let mut outs: Vec<&mut [f32]> = chans.iter_mut().map(Vec::as_mut_slice).collect();
-    assert!(jit.shade_points::<F, _>(&mut ctx, &varying, &mut outs).unwrap(), "{} has a points entry", F::NAME);
-    chans.iter().map(|c| c.iter().map(|&x| bits(x)).collect()).collect()
+    let mut out = ShadeOut::new(set.len());
+    assert!(jit.shade_point_set::<F, _>(lights, set, &mut out).unwrap(), "{} has a points entry", F::NAME);
+    out.channels.iter().map(|c| c.iter().map(|&x| bits(x)).collect()).collect()
 }
 
 fn check<F: ShadingFloat>(name: &str, jit: &JitShader, set: &PointSet, lights_name: &str, lights: &[Light]) {

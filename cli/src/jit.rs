@@ -181,7 +181,8 @@ pub fn check(files: &[PathBuf], points: usize, verbose: bool) -> bool {
 pub struct JitBenchRow {
     /// Table-1 shader name.
     pub shader: String,
-    /// `jit-f32`, `jit-x4`, `jit-x8`, `jit-x16`, `aot-f32`, `aot-f32x8`, `interp`.
+    /// `jit-f32`, `jit-x4`, `jit-x8`, `jit-x16`, `aot-f32`, `aot-f32x8`, `interp`, `jit-x8-points`
+    /// (the points entry, `JitShader::shade_points`).
     pub backend: String,
     /// Median cold compile time, parse → machine code (0 for aot).
     pub compile_ms: f64,
@@ -299,6 +300,16 @@ pub fn bench(opts: &JitBenchOpts) -> Result<Vec<JitBenchRow>, String> {
             ("aot-f32", 0.0, Box::new(|o| shade_points::<f32, _, Light>(&aot, &lights, &set, o))),
             ("aot-f32x8", 0.0, Box::new(|o| shade_points::<F32x8, _, Light>(&aot, &lights, &set, o))),
             ("interp", interp_ms, Box::new(|o| shade_points::<F32x8, _, Light>(&interp, &lights, &set, o))),
+            // The loop over the point set compiled with the shader (`JitShader::shade_points`).
+            (
+                "jit-x8-points",
+                compile_ms[2],
+                Box::new(|o| {
+                    if !matches!(jit.shade_point_set::<F32x8, Light>(&lights, &set, o), Ok(true)) {
+                        shade_points::<F32x8, _, Light>(&jit, &lights, &set, o);
+                    }
+                }),
+            ),
         ];
         let mut outs: Vec<ShadeOut<f32>> = runners.iter().map(|_| ShadeOut::new(set.len())).collect();
         let mut times: Vec<Vec<f64>> = vec![Vec::new(); runners.len()];
