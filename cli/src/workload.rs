@@ -241,12 +241,13 @@ impl Jit {
         Box::new(Self { name, variant, shaders: HashMap::new() })
     }
 
-    fn compile(shader: &WorkloadShader, variant: anysl_jit::Variant) -> Result<anysl_jit::JitShader, String> {
+    fn compile(shader: &WorkloadShader) -> Result<anysl_jit::JitShader, String> {
         let mut jit = anysl_jit::JitShader::new(sl_module(shader)?, anysl_jit::JitOptions::default())
             .map_err(|e| format!("{}: {e}", shader.sl_file_name()))?;
         copy_params(shader, &mut jit)?;
-        // Machine code now: `shade` would quietly fall back to the interpreter on an error.
-        jit.variant(variant).map_err(|e| format!("{} ({variant:?}): {e}", shader.sl_file_name()))?;
+        // The machine code is the points entry's, compiled on the first call (`jit_points`),
+        // whose errors are the row's; the per-packet variant is compiled only where a float
+        // type has no points entry.
         Ok(jit)
     }
 }
@@ -260,7 +261,7 @@ impl System for Jit {
         use anysl_jit::Variant;
         let jit: &anysl_jit::JitShader = match self.shaders.entry((shader.name(), env.threads())) {
             Entry::Occupied(e) => e.into_mut(),
-            Entry::Vacant(e) => e.insert(Self::compile(shader, self.variant)?),
+            Entry::Vacant(e) => e.insert(Self::compile(shader)?),
         };
         let (scene, lights) = (env.scene, env.lights);
         // The points entry is compiled on the first chunk; an error is the row's.

@@ -8,7 +8,7 @@
 //! The loop over the lights is [`anysl_core::run_illuminance`] with each light evaluated as
 //! [`anysl_core::LightData::light`] does, and the bodies are those of `anysl-core`'s lighting
 //! functions, operation for operation, so the sums are the renderer's bit for bit (tested:
-//! `tests/light_loops.rs`). Inline, the loop costs no call into the renderer and no spill of
+//! `tests/suite/light_loops.rs`). Inline, the loop costs no call into the renderer and no spill of
 //! the shader's live registers; `1/roughness` is computed once. The highlight's `pow` is the
 //! library's polynomial emitted as IR for the vector variants (bit for bit the library's),
 //! with the lanes whose cosine is `+0` taken out ([`Cg::pow_of_cosine`]).

@@ -1,0 +1,11 @@
+//! The JIT's tests, one binary: the modules share the instantiations of the JIT's calling code
+//! (host tables, contexts, the interpreter fallback) that separate binaries would each compile.
+//!
+//! `cargo test -p anysl-jit --test suite points::` runs one module.
+
+mod inline_geometry;
+mod inline_math;
+mod light_loops;
+mod points;
+mod smoke;
+mod spaces;

@@ -1,0 +1,7 @@
+//! Scenes rendered end to end, one binary: the modules share the renderers' instantiations
+//! that separate binaries would each compile.
+//!
+//! `cargo test -p anysl-scene --test scenes spaces::` runs one module.
+
+mod known_answers;
+mod spaces;
