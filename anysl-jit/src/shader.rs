@@ -164,7 +164,8 @@ impl JitShader {
     /// `0 .. n` (`n` the length of each output array, a multiple of `F::LANES`) in packets of
     /// `F::LANES`, every lane active. `varying` gives, for each global that differs from point
     /// to point, one array of `n` values per component (`P`: x, y, z; `s`: one); the other
-    /// globals are the context's, the same for every packet. `out` receives `Ci` (r, g, b) and,
+    /// globals are the context's, the same for every packet (and a varying global the shader
+    /// does not read, [`SurfaceShader::globals_read`], is not copied). `out` receives `Ci` (r, g, b) and,
     /// with six arrays, `Oi`. The result is what [`SurfaceShader::shade`] gives packet by
     /// packet with the context's globals set to each packet's values, bit for bit.
     ///
@@ -195,6 +196,9 @@ impl JitShader {
         }
         let mut src = [core::ptr::null::<f32>(); GLOBAL_VALUES];
         let mut mask = 0u64;
+        // Only the globals the shader reads are copied per packet (the contract of
+        // `globals_read`, which a renderer calling `shade` relies on too).
+        let read = self.globals_read();
         for (g, comps) in varying {
             let Some(&(_, first)) = GLOBAL_ORDER.iter().find(|(x, _)| x == g) else {
                 return Err(JitError(format!("points: {g:?} is not a global the renderer supplies")));
@@ -202,6 +206,9 @@ impl JitShader {
             let nc = g.ty().base.components();
             if comps.len() != nc || comps.iter().any(|a| a.len() != n) {
                 return Err(JitError(format!("points: {g:?} needs {nc} arrays of {n} values")));
+            }
+            if !read.contains(global_set(*g)) {
+                continue;
             }
             for (c, a) in comps.iter().enumerate() {
                 src[first + c] = a.as_ptr();
@@ -395,6 +402,29 @@ impl Shader for JitShader {
             self.points = PointsCache::default();
         }
         Ok(())
+    }
+}
+
+/// The [`anysl_core::GlobalSet`] member of a global the renderer supplies ([`GLOBAL_ORDER`]).
+fn global_set(g: Global) -> anysl_core::GlobalSet {
+    use anysl_core::GlobalSet as S;
+    match g {
+        Global::P => S::P,
+        Global::N => S::N,
+        Global::Ng => S::NG,
+        Global::I => S::I,
+        Global::E => S::E,
+        Global::DPdu => S::DPDU,
+        Global::DPdv => S::DPDV,
+        Global::Cs => S::CS,
+        Global::Os => S::OS,
+        Global::S => S::S,
+        Global::T => S::T,
+        Global::U => S::U,
+        Global::V => S::V,
+        Global::Du => S::DU,
+        Global::Dv => S::DV,
+        _ => S::ALL,
     }
 }
 
