@@ -133,7 +133,7 @@ impl JitShader {
     /// # Errors
     /// When the shader cannot be compiled for this variant.
     pub fn variant(&self, v: Variant) -> Result<Arc<CompiledShader>, String> {
-        self.variant_ref(v).map(|c| Arc::clone(c)).map_err(Clone::clone)
+        self.variant_ref(v).map(Arc::clone).map_err(Clone::clone)
     }
 
     /// [`JitShader::variant`] without touching the reference count (the per-call path).
