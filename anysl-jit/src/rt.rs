@@ -598,6 +598,19 @@ pub struct HostCtx<'a, F: ShadingFloat, C> {
     pub lit: Option<(Vec3<F>, F::Mask, Color<F>, Vec3<F>)>,
 }
 
+impl<'a, F: ShadingFloat, C: ShadingContext<F>> HostCtx<'a, F, C> {
+    /// The host state of one call into compiled code: the context's lights as data when it
+    /// has them (read by the compiled code in place, while the host shims hold the context,
+    /// which never changes them: a `ShadingContext` hands them out only by shared reference).
+    pub fn new(ctx: &'a mut C) -> Self {
+        let (lights, n_lights) = match ctx.lights_as_data() {
+            Some(l) => (l.as_ptr(), l.len()),
+            None => (core::ptr::null(), 0),
+        };
+        Self { lights, n_lights, ctx, lit: None }
+    }
+}
+
 /// Byte offset of [`HostCtx::lights`].
 pub const HOST_CTX_LIGHTS: u64 = 0;
 /// Byte offset of [`HostCtx::n_lights`].

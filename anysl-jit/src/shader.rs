@@ -207,7 +207,7 @@ impl JitShader {
             if comps.len() != nc || comps.iter().any(|a| a.len() != n) {
                 return Err(JitError(format!("points: {g:?} needs {nc} arrays of {n} values")));
             }
-            if !read.contains(global_set(*g)) {
+            if !read.contains(anysl_rsl::passes::analysis::global_set(*g)) {
                 continue;
             }
             for (c, a) in comps.iter().enumerate() {
@@ -224,23 +224,10 @@ impl JitShader {
             *d = o.as_mut_ptr();
         }
         let packets = n / F::LANES;
-        macro_rules! arm {
-            ($G:ty) => {
-                if const { may_be::<F, $G>() } {
-                    self.run_points::<F, C, $G>(&cp, ctx, &src, &dst, packets);
-                    return Ok(true);
-                }
-            };
-        }
-        match v {
-            Variant::F32 => arm!(f32),
-            Variant::X4 => arm!(F32x4),
-            Variant::X8 => arm!(F32x8),
-            Variant::X16 => arm!(F32x16),
-            Variant::X8x4 => arm!(Pair<Pair<F32x8>>),
-            Variant::X16x2 => arm!(Pair<F32x16>),
-            Variant::DualF32 | Variant::DualX8 => {}
-        }
+        return_as_variant!(v, F, |G| {
+            self.run_points::<F, C, G>(&cp, ctx, &src, &dst, packets);
+            Ok(true)
+        });
         unreachable!("variant_of::<{}>() named {v:?}, a type of other lanes or size", core::any::type_name::<F>())
     }
 
@@ -302,11 +289,7 @@ impl JitShader {
         // back there; no Rust code reads through this pointer while it runs.
         let g = ctx.globals_mut().expect("checked by shade_points") as *mut Globals<F>;
         let host = HostTable::<F, C, G>::table();
-        let (lights, n_lights) = match ctx.lights_as_data() {
-            Some(l) => (l.as_ptr(), l.len()),
-            None => (core::ptr::null(), 0),
-        };
-        let mut hc = HostCtx { lights, n_lights, ctx, lit: None };
+        let mut hc = HostCtx::new(ctx);
         // SAFETY: the arrays hold `packets · F::LANES` values each (`shade_points`), the
         // globals have the layout the code was compiled for, and `ctx` is a `C`, which is what
         // the host table's shims take.
@@ -354,14 +337,7 @@ impl JitShader {
         let gbuf = (ctx.globals() as *const Globals<F>).cast::<f32>();
         unsafe { G::write_mask(cast::<F::Mask, G::Mask>(e.mask()), mbuf.as_mut_ptr()) };
         let host = HostTable::<F, C, G>::table();
-        // The lights as data, when the context has them, are read by the compiled code like
-        // the globals: in place, while the host shims hold the context (which never changes
-        // them: a `ShadingContext` hands them out only by shared reference).
-        let (lights, n_lights) = match ctx.lights_as_data() {
-            Some(l) => (l.as_ptr(), l.len()),
-            None => (core::ptr::null(), 0),
-        };
-        let mut hc = HostCtx { lights, n_lights, ctx, lit: None };
+        let mut hc = HostCtx::new(ctx);
         // SAFETY: the buffers have the layout the compiled code expects; `ctx` is a `C`, which
         // is what the host table's shims take.
         unsafe {
@@ -405,28 +381,31 @@ impl Shader for JitShader {
     }
 }
 
-/// The [`anysl_core::GlobalSet`] member of a global the renderer supplies ([`GLOBAL_ORDER`]).
-fn global_set(g: Global) -> anysl_core::GlobalSet {
-    use anysl_core::GlobalSet as S;
-    match g {
-        Global::P => S::P,
-        Global::N => S::N,
-        Global::Ng => S::NG,
-        Global::I => S::I,
-        Global::E => S::E,
-        Global::DPdu => S::DPDU,
-        Global::DPdv => S::DPDV,
-        Global::Cs => S::CS,
-        Global::Os => S::OS,
-        Global::S => S::S,
-        Global::T => S::T,
-        Global::U => S::U,
-        Global::V => S::V,
-        Global::Du => S::DU,
-        Global::Dv => S::DV,
-        _ => S::ALL,
-    }
+/// Returns `$body` evaluated with `$G` the [`JitFloat`] of variant `$v`, for the variant whose
+/// type may be `$F` ([`may_be`]); falls through otherwise. Each arm is behind an `if const`,
+/// so only the matching variant's code (its `run` and host table) is instantiated for `$F`:
+/// eight variants would otherwise cost every float type and context eight copies.
+macro_rules! return_as_variant {
+    ($v:expr, $F:ty, |$G:ident| $body:expr) => {
+        match $v {
+            Variant::F32 => return_as_variant!(@arm $F, f32, $G, $body),
+            Variant::X4 => return_as_variant!(@arm $F, F32x4, $G, $body),
+            Variant::X8 => return_as_variant!(@arm $F, F32x8, $G, $body),
+            Variant::X16 => return_as_variant!(@arm $F, F32x16, $G, $body),
+            Variant::DualF32 => return_as_variant!(@arm $F, Dual<f32>, $G, $body),
+            Variant::DualX8 => return_as_variant!(@arm $F, Dual<F32x8>, $G, $body),
+            Variant::X8x4 => return_as_variant!(@arm $F, Pair<Pair<F32x8>>, $G, $body),
+            Variant::X16x2 => return_as_variant!(@arm $F, Pair<F32x16>, $G, $body),
+        }
+    };
+    (@arm $F:ty, $T:ty, $G:ident, $body:expr) => {{
+        type $G = $T;
+        if const { may_be::<$F, $G>() } {
+            return $body;
+        }
+    }};
 }
+use return_as_variant;
 
 /// Whether `F` may be `G` (`variant_of` decides which it is): the same lanes and size.
 const fn may_be<F: ShadingFloat, G: JitFloat>() -> bool {
@@ -443,27 +422,7 @@ impl SurfaceShader for JitShader {
     fn shade<F: ShadingFloat, C: ShadingContext<F>>(&self, ctx: &mut C, e: &mut Exec<F>) -> SurfaceOutput<F> {
         if let Some(v) = variant_of::<F>() {
             if let Ok(cs) = self.variant_ref(v) {
-                // Each arm runs only where `G` is `F`; the `const` guard keeps the other
-                // `run::<F, C, G>` (and their host tables) from being instantiated for this
-                // `F` at all: eight variants would otherwise cost every float type and
-                // context that calls a JIT shader eight copies.
-                macro_rules! arm {
-                    ($G:ty) => {
-                        if const { may_be::<F, $G>() } {
-                            return self.run::<F, C, $G>(cs, ctx, e);
-                        }
-                    };
-                }
-                match v {
-                    Variant::F32 => arm!(f32),
-                    Variant::X4 => arm!(F32x4),
-                    Variant::X8 => arm!(F32x8),
-                    Variant::X16 => arm!(F32x16),
-                    Variant::DualF32 => arm!(Dual<f32>),
-                    Variant::DualX8 => arm!(Dual<F32x8>),
-                    Variant::X8x4 => arm!(Pair<Pair<F32x8>>),
-                    Variant::X16x2 => arm!(Pair<F32x16>),
-                }
+                return_as_variant!(v, F, |G| self.run::<F, C, G>(cs, ctx, e));
                 unreachable!(
                     "variant_of::<{}>() named {v:?}, a type of other lanes or size",
                     core::any::type_name::<F>()

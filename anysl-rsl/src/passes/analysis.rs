@@ -249,13 +249,38 @@ pub fn analyze_derivatives(func: &mut Function) -> bool {
 const CONTEXT_P_BUILTINS: &[&str] = &["ambient", "diffuse", "specular", "phong", "random", "depth"];
 const CONTEXT_ALL_BUILTINS: &[&str] = &["Du", "Dv", "Deriv", "calculatenormal", "texture", "environment", "shadow"];
 
+/// The member of [`anysl_core::GlobalSet`] a global is read through (`Oi` starts as `Os`);
+/// empty for the outputs and the light-loop globals, which the renderer does not supply.
+#[must_use]
+pub fn global_set(g: crate::ir::Global) -> anysl_core::GlobalSet {
+    use crate::ir::Global as G;
+    use anysl_core::GlobalSet as S;
+    match g {
+        G::P => S::P,
+        G::N => S::N,
+        G::Ng => S::NG,
+        G::I => S::I,
+        G::E => S::E,
+        G::Cs => S::CS,
+        G::Os | G::Oi => S::OS,
+        G::S => S::S,
+        G::T => S::T,
+        G::U => S::U,
+        G::V => S::V,
+        G::Du => S::DU,
+        G::Dv => S::DV,
+        G::DPdu => S::DPDU,
+        G::DPdv => S::DPDV,
+        _ => S::NONE,
+    }
+}
+
 /// The globals a compiled shader reads — what a renderer must fill in before running it (see
 /// `anysl_core::SurfaceShader::globals_read`): every global variable the code touches (back
 /// ends load each one at entry), `Os` (the default `Oi`), `P` and `N` for displacement
 /// shaders (their outputs default to them), and what the context-reading built-ins use.
 #[must_use]
 pub fn globals_read(module: &crate::ir::Module) -> anysl_core::GlobalSet {
-    use crate::ir::Global as G;
     use anysl_core::GlobalSet as S;
     let func = &module.func;
     let mut read = S::OS;
@@ -264,24 +289,7 @@ pub fn globals_read(module: &crate::ir::Module) -> anysl_core::GlobalSet {
     }
     for s in &func.slots {
         if let SlotKind::Global(g) = s.kind {
-            read |= match g {
-                G::P => S::P,
-                G::N => S::N,
-                G::Ng => S::NG,
-                G::I => S::I,
-                G::E => S::E,
-                G::Cs => S::CS,
-                G::Os | G::Oi => S::OS,
-                G::S => S::S,
-                G::T => S::T,
-                G::U => S::U,
-                G::V => S::V,
-                G::Du => S::DU,
-                G::Dv => S::DV,
-                G::DPdu => S::DPDU,
-                G::DPdv => S::DPDV,
-                _ => S::NONE,
-            };
+            read |= global_set(g);
         }
     }
     walk(&func.body, &mut |node| {
