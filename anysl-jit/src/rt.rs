@@ -593,9 +593,8 @@ pub struct HostCtx<'a, F: ShadingFloat, C> {
     pub n_lights: usize,
     /// The renderer's context.
     pub ctx: &'a mut C,
-    /// `(N, mask, diffuse)` of the last fused loop, and the `P` it was computed at (a
-    /// points entry shades many packets with one `HostCtx`).
-    pub lit: Option<(Vec3<F>, F::Mask, Color<F>, Vec3<F>)>,
+    /// The diffuse sum of the last fused loop.
+    pub lit: Option<KeptDiffuse<F>>,
 }
 
 impl<'a, F: ShadingFloat, C: ShadingContext<F>> HostCtx<'a, F, C> {
@@ -609,6 +608,20 @@ impl<'a, F: ShadingFloat, C: ShadingContext<F>> HostCtx<'a, F, C> {
         };
         Self { lights, n_lights, ctx, lit: None }
     }
+}
+
+/// The diffuse sum a `specular` host call leaves for the `diffuse` call after it: taken when
+/// the normal, the mask and `P` are the same (a points entry shades many packets with one
+/// [`HostCtx`]).
+pub struct KeptDiffuse<F: ShadingFloat> {
+    /// The normal.
+    pub n: Vec3<F>,
+    /// The mask.
+    pub mask: F::Mask,
+    /// `diffuse(n)`.
+    pub diffuse: Color<F>,
+    /// The context's `P` at the call.
+    pub p: Vec3<F>,
 }
 
 /// Byte offset of [`HostCtx::lights`].
@@ -713,7 +726,7 @@ unsafe extern "C" fn host_diffuse<F: ShadingFloat, C: ShadingContext<F>, G: JitF
     let m = cast::<G::Mask, F::Mask>(G::read_mask(mask));
     let n = HIn::<F, G>::new(inp).v3();
     let d = match hc.lit.take() {
-        Some((n0, m0, d, p0)) if same(n, n0, m, m0) && same(hc.ctx.globals().P, p0, m, m0) => d,
+        Some(k) if same(n, k.n, m, k.mask) && same(hc.ctx.globals().P, k.p, m, k.mask) => k.diffuse,
         _ => diffuse(hc.ctx, &mut Exec::with_mask(m), n),
     };
     let mut o = HOut::<F, G>::new(out);
@@ -736,7 +749,7 @@ unsafe extern "C" fn host_specular<F: ShadingFloat, C: ShadingContext<F>, G: Jit
     let mut i = HIn::<F, G>::new(inp);
     let (n, v, r) = (i.v3(), i.v3(), i.f());
     let (d, sp) = diffuse_specular(hc.ctx, &mut Exec::with_mask(m), n, v, r);
-    hc.lit = Some((n, m, d, hc.ctx.globals().P));
+    hc.lit = Some(KeptDiffuse { n, mask: m, diffuse: d, p: hc.ctx.globals().P });
     let mut o = HOut::<F, G>::new(out);
     o.c3(sp);
     // `aux` 1: also `diffuse(N)`; 2: and `ambient()` (the code generator keeps them).
