@@ -22,6 +22,7 @@ pub use points::POINTS_NAME;
 
 use crate::abi::{self, host, GLOBAL_ORDER};
 use crate::rt::{self, RtKind};
+use anysl_rsl::builtins::Builtin;
 use anysl_rsl::ir::{self, BinOp, Block, Const, Function, Global, Node, Op, SlotId, SlotKind, UnOp, Value};
 use anysl_rsl::types::{BaseType, Detail, Type};
 use inkwell::attributes::{Attribute, AttributeLoc};
@@ -192,18 +193,18 @@ enum NormalSrc {
 /// the `ambient()` call: that normal. Matte-like shaders (`Ka·ambient() + Kd·diffuse(Nf)`)
 /// then visit the lights once for both ([`Cg::lit_call`]).
 fn ambient_partners(func: &Function) -> HashMap<u32, NormalSrc> {
-    fn is_call(func: &Function, v: Value, want: &str, nargs: usize) -> bool {
+    fn is_call(func: &Function, v: Value, want: Builtin, nargs: usize) -> bool {
         let i = func.inst(v);
-        matches!(&i.op, Op::Call { name, .. } if name == want) && i.args.len() == nargs
+        matches!(&i.op, Op::Call { builtin, .. } if *builtin == want) && i.args.len() == nargs
     }
     fn walk(func: &Function, block: &Block, out: &mut HashMap<u32, NormalSrc>) {
         for (i, node) in block.iter().enumerate() {
             match node {
-                Node::Inst(v) if is_call(func, *v, "ambient", 0) => {
+                Node::Inst(v) if is_call(func, *v, Builtin::Ambient, 0) => {
                     let mut stored = Vec::new();
                     for later in &block[i + 1..] {
                         match later {
-                            Node::Inst(w) if is_call(func, *w, "diffuse", 1) => {
+                            Node::Inst(w) if is_call(func, *w, Builtin::Diffuse, 1) => {
                                 let a = func.inst(*w).args[0];
                                 let src = match func.inst(a).op {
                                     Op::Load(s) if !stored.contains(&s) && func.slot(s).ty.array.is_none() => {
@@ -1136,20 +1137,20 @@ impl<'c, 'm> Cg<'c, 'm> {
         if self.t.dual || args.len() != 7 {
             return None;
         }
-        let amb = self.func.insts.iter().any(|i| matches!(&i.op, Op::Call { name, .. } if name == "ambient"));
+        let amb = self.func.insts.iter().any(|i| matches!(&i.op, Op::Call { builtin: Builtin::Ambient, .. }));
         Some(if amb { 2 } else { 1 })
     }
 
     /// Call `v`, with the light sums of `specular` kept for the `diffuse(N)` and `ambient()`
     /// calls after it ([`LitMemo`]).
     fn lit_call(&mut self, v: Value, args: Vec<Val<'c>>) -> R<Val<'c>> {
-        let name = match &self.func.inst(v).op {
-            Op::Call { name, .. } => name.clone(),
+        let builtin = match &self.func.inst(v).op {
+            Op::Call { builtin, .. } => *builtin,
             _ => return self.emit_call(v, args),
         };
         let triple = |a: Option<&Val<'c>>| a.and_then(Self::plain_triple);
-        match name.as_str() {
-            "specular" => {
+        match builtin {
+            Builtin::Specular => {
                 let n = triple(args.first());
                 let key = self.normal_key(v);
                 let r = self.emit_call(v, args)?;
@@ -1161,9 +1162,9 @@ impl<'c, 'm> Cg<'c, 'm> {
                     (r, _) => Ok(r),
                 }
             }
-            "diffuse" | "ambient" => {
+            Builtin::Diffuse | Builtin::Ambient => {
                 let f = self.cur_fn();
-                let n = if name == "diffuse" { triple(args.first()) } else { None };
+                let n = if builtin == Builtin::Diffuse { triple(args.first()) } else { None };
                 // The kept sums are tried only under the same mask as far as the code generator
                 // can tell, and for `diffuse` only for a normal from the same source; the test at
                 // run time decides.
@@ -1175,9 +1176,15 @@ impl<'c, 'm> Cg<'c, 'm> {
                     None => (false, false),
                 };
                 let memo = match self.lit {
-                    Some(m) if m.f == f && same_mask && (same_normal || (name == "ambient" && m.amb.is_some())) => m,
+                    Some(m)
+                        if m.f == f
+                            && same_mask
+                            && (same_normal || (builtin == Builtin::Ambient && m.amb.is_some())) =>
+                    {
+                        m
+                    }
                     _ => {
-                        return match (name == "ambient").then(|| self.ambient_with_diffuse(v)).flatten() {
+                        return match (builtin == Builtin::Ambient).then(|| self.ambient_with_diffuse(v)).flatten() {
                             Some(r) => Ok(r),
                             None => self.emit_call(v, args),
                         }
@@ -2360,8 +2367,7 @@ impl<'c, 'm> Cg<'c, 'm> {
             _ => {
                 // Derivative built-ins keep dual arguments; every other op runs in the
                 // representation its result needs (so derivative work nobody uses is skipped).
-                let keep =
-                    matches!(&inst.op, Op::Call { name, .. } if ir::DERIVATIVE_BUILTINS.contains(&name.as_str()));
+                let keep = matches!(&inst.op, Op::Call { builtin, .. } if builtin.uses_derivatives());
                 let mut args: Vec<Val<'c>> = Vec::with_capacity(inst.args.len());
                 for &a in &inst.args {
                     let x = self.val(a)?;
@@ -2409,8 +2415,8 @@ impl<'c, 'm> Cg<'c, 'm> {
     fn threaded(&mut self, v: Value, args: Vec<Val<'c>>) -> R<Val<'c>> {
         let inst = self.func.inst(v);
         // setcomp-like calls read the variable they update: inline.
-        if let Op::Call { name, .. } = &inst.op {
-            if matches!(name.as_str(), "setcomp" | "setxcomp" | "setycomp" | "setzcomp") {
+        if let Op::Call { builtin, .. } = &inst.op {
+            if matches!(builtin, Builtin::SetComp | Builtin::SetXComp | Builtin::SetYComp | Builtin::SetZComp) {
                 let out = self.op_body(v, &args)?;
                 return self.finish_outputs(v, out);
             }
@@ -2604,7 +2610,7 @@ impl<'c, 'm> Cg<'c, 'm> {
             Op::MakeTriple => format!("make{}", letter(inst.ty)),
             Op::MakeMatrix => "makem".to_string(),
             Op::FromSpace => format!("from{}", letter(inst.ty)),
-            Op::Call { name, overload, .. } => format!("{name}{overload}"),
+            Op::Call { builtin, overload, .. } => format!("{builtin}{overload}"),
             _ => "op".to_string(),
         };
         let mut types = String::new();
@@ -2860,9 +2866,9 @@ impl<'c> Cg<'c, '_> {
                     Val::Num(self.rt_call(RtKind::Geo, aux, &all, n_out, false))
                 }
             }
-            Op::Call { name, outputs, .. } => {
+            Op::Call { builtin, outputs, .. } => {
                 let _ = aty;
-                return self.builtin(v, name, outputs, args);
+                return self.builtin(v, *builtin, outputs, args);
             }
             Op::Const(_) | Op::Load(_) | Op::LoadElem(_) => return err("memory op in a threaded body"),
         };
@@ -2929,7 +2935,7 @@ impl<'c> Cg<'c, '_> {
     }
 
     #[allow(clippy::too_many_lines)]
-    fn builtin(&mut self, v: Value, name: &str, outputs: &[Option<SlotId>], args: &[Val<'c>]) -> R<Vec<Val<'c>>> {
+    fn builtin(&mut self, v: Value, builtin: Builtin, outputs: &[Option<SlotId>], args: &[Val<'c>]) -> R<Vec<Val<'c>>> {
         let func = self.func;
         let inst = func.inst(v);
         let n = args.len();
@@ -2972,12 +2978,12 @@ impl<'c> Cg<'c, '_> {
             }
             Ok(all)
         };
-        let res: Val<'c> = match name {
-            "abs" => Val::Num(nums(self, 0)?.into_iter().map(|s| self.abs(s)).collect()),
-            "floor" => Val::Num(nums(self, 0)?.into_iter().map(|s| self.floor(s)).collect()),
-            "ceil" => Val::Num(nums(self, 0)?.into_iter().map(|s| self.ceil(s)).collect()),
-            "sqrt" => Val::Num(nums(self, 0)?.into_iter().map(|s| self.sqrt(s)).collect()),
-            "sign" => Val::Num(
+        let res: Val<'c> = match builtin {
+            Builtin::Abs => Val::Num(nums(self, 0)?.into_iter().map(|s| self.abs(s)).collect()),
+            Builtin::Floor => Val::Num(nums(self, 0)?.into_iter().map(|s| self.floor(s)).collect()),
+            Builtin::Ceil => Val::Num(nums(self, 0)?.into_iter().map(|s| self.ceil(s)).collect()),
+            Builtin::Sqrt => Val::Num(nums(self, 0)?.into_iter().map(|s| self.sqrt(s)).collect()),
+            Builtin::Sign => Val::Num(
                 nums(self, 0)?
                     .into_iter()
                     .map(|x| {
@@ -2991,42 +2997,38 @@ impl<'c> Cg<'c, '_> {
                     })
                     .collect(),
             ),
-            "round" => Val::Num(
+            Builtin::Round => Val::Num(
                 nums(self, 0)?
                     .into_iter()
                     .map(|x| self.constant_part(x.r, self.unary_intr("llvm.round", x.v)))
                     .collect(),
             ),
-            "inversesqrt" => Val::Num(nums(self, 0)?.into_iter().map(|x| self.rsqrt(x)).collect()),
-            "exp" => un_rt(self, rt::un::EXP)?,
-            "log" if n == 1 => un_rt(self, rt::un::LOG)?,
-            "log" if n == 2 => bin_rt(self, rt::bin::LOG_BASE, nums(self, 0)?.len())?,
-            "sin" => un_rt(self, rt::un::SIN)?,
-            "cos" => un_rt(self, rt::un::COS)?,
-            "tan" => un_rt(self, rt::un::TAN)?,
-            "asin" => un_rt(self, rt::un::ASIN)?,
-            "acos" => un_rt(self, rt::un::ACOS)?,
-            "atan" if n == 1 => un_rt(self, rt::un::ATAN)?,
-            "atan" if n == 2 => bin_rt(self, rt::bin::ATAN2, 1)?,
-            "radians" => Val::Num(
+            Builtin::InverseSqrt => Val::Num(nums(self, 0)?.into_iter().map(|x| self.rsqrt(x)).collect()),
+            Builtin::Exp => un_rt(self, rt::un::EXP)?,
+            Builtin::Log if n == 1 => un_rt(self, rt::un::LOG)?,
+            Builtin::Log if n == 2 => bin_rt(self, rt::bin::LOG_BASE, nums(self, 0)?.len())?,
+            Builtin::Sin => un_rt(self, rt::un::SIN)?,
+            Builtin::Cos => un_rt(self, rt::un::COS)?,
+            Builtin::Tan => un_rt(self, rt::un::TAN)?,
+            Builtin::Asin => un_rt(self, rt::un::ASIN)?,
+            Builtin::Acos => un_rt(self, rt::un::ACOS)?,
+            Builtin::Atan if n == 1 => un_rt(self, rt::un::ATAN)?,
+            Builtin::Atan if n == 2 => bin_rt(self, rt::bin::ATAN2, 1)?,
+            Builtin::Radians => Val::Num(
                 nums(self, 0)?.into_iter().map(|s| self.mul(s, self.fc(std::f64::consts::PI / 180.0))).collect(),
             ),
-            "degrees" => Val::Num(
+            Builtin::Degrees => Val::Num(
                 nums(self, 0)?.into_iter().map(|s| self.mul(s, self.fc(180.0 / std::f64::consts::PI))).collect(),
             ),
-            "sqr" => {
-                let x = nums(self, 0)?[0];
-                Val::Num(vec![self.mul(x, x)])
-            }
-            "pow" if n == 2 => bin_rt(self, rt::bin::POW, nums(self, 0)?.len())?,
-            "mod" if n == 2 => {
+            Builtin::Pow if n == 2 => bin_rt(self, rt::bin::POW, nums(self, 0)?.len())?,
+            Builtin::Mod if n == 2 => {
                 let all = vec![nums(self, 0)?, nums(self, 1)?];
                 let w = all[0].len();
                 Val::Num(self.cwise(&all, w, |cg, x| cg.fmod(x[0], x[1])))
             }
-            "min" | "max" if n >= 2 => {
+            Builtin::Min | Builtin::Max if n >= 2 => {
                 let all: Vec<Vec<S<'c>>> = (0..n).map(|i| nums(self, i)).collect::<R<_>>()?;
-                let max = name == "max";
+                let max = builtin == Builtin::Max;
                 Val::Num(self.cwise(&all, rw, |cg, x| {
                     let mut r = cg.minmax(x[0], x[1], max);
                     for &z in &x[2..] {
@@ -3035,32 +3037,32 @@ impl<'c> Cg<'c, '_> {
                     r
                 }))
             }
-            "step" if n == 2 => {
+            Builtin::Step if n == 2 => {
                 let all = vec![nums(self, 0)?, nums(self, 1)?];
                 Val::Num(self.cwise(&all, rw, |cg, x| cg.step(x[0], x[1])))
             }
-            "clamp" if n == 3 => {
+            Builtin::Clamp if n == 3 => {
                 let all: Vec<Vec<S<'c>>> = (0..3).map(|i| nums(self, i)).collect::<R<_>>()?;
                 Val::Num(self.cwise(&all, rw, |cg, x| cg.clamp(x[0], x[1], x[2])))
             }
-            "mix" if n == 3 => {
+            Builtin::Mix if n == 3 => {
                 let all: Vec<Vec<S<'c>>> = (0..3).map(|i| nums(self, i)).collect::<R<_>>()?;
                 Val::Num(self.cwise(&all, rw, |cg, x| cg.mix(x[0], x[1], x[2])))
             }
-            "smoothstep" if n == 3 => {
+            Builtin::SmoothStep if n == 3 => {
                 let all: Vec<Vec<S<'c>>> = (0..3).map(|i| nums(self, i)).collect::<R<_>>()?;
                 Val::Num(self.cwise(&all, rw, |cg, x| cg.smoothstep(x[0], x[1], x[2])))
             }
-            "length" => {
+            Builtin::Length => {
                 let a = nums(self, 0)?;
                 Val::Num(vec![self.length(&a)])
             }
-            "distance" => {
+            Builtin::Distance => {
                 let (a, b) = (nums(self, 0)?, nums(self, 1)?);
                 let d: Vec<S<'c>> = (0..3).map(|c| self.sub(a[c], b[c])).collect();
                 Val::Num(vec![self.length(&d)])
             }
-            "normalize" => {
+            Builtin::Normalize => {
                 let a = nums(self, 0)?;
                 if a.iter().any(|s| s.r == Repr::D) {
                     Val::Num(self.rt_call(RtKind::Geo, rt::geo::NORMALIZE, &a, 3, false))
@@ -3068,17 +3070,17 @@ impl<'c> Cg<'c, '_> {
                     Val::Num(self.normalize(&a))
                 }
             }
-            "faceforward" => {
+            Builtin::FaceForward => {
                 let (nn, i) = (nums(self, 0)?, nums(self, 1)?);
                 let nref = if n == 3 { nums(self, 2)? } else { self.read_global(Global::Ng) };
                 let flip = self.cmp(FloatPredicate::OGT, self.dot(&i, &nref), self.fc(0.0));
                 Val::Num(nn.iter().map(|&c| self.sel(flip, self.neg(c), c)).collect())
             }
-            "reflect" => {
+            Builtin::Reflect => {
                 let (i, nn) = (nums(self, 0)?, nums(self, 1)?);
                 Val::Num(self.reflect(&i, &nn))
             }
-            "refract" => {
+            Builtin::Refract => {
                 let a = flat_args(self, 0..3)?;
                 if a.iter().any(|s| s.r == Repr::D) {
                     Val::Num(self.rt_call(RtKind::Geo, rt::geo::REFRACT, &a, 3, false))
@@ -3086,7 +3088,7 @@ impl<'c> Cg<'c, '_> {
                     Val::Num(self.refract(&a[0..3], &a[3..6], a[6]))
                 }
             }
-            "fresnel" => {
+            Builtin::Fresnel => {
                 let a = flat_args(self, 0..3)?;
                 let r = if a.iter().any(|s| s.r == Repr::D) {
                     self.rt_call(RtKind::Geo, rt::geo::FRESNEL, &a, 8, false)
@@ -3105,28 +3107,34 @@ impl<'c> Cg<'c, '_> {
                 all.extend(outs);
                 return Ok(all);
             }
-            "ptlined" => Val::Num(self.rt_call(RtKind::Geo, rt::geo::PTLINED, &flat_args(self, 0..3)?, 1, false)),
-            "rotate" if aty(0).is_triple() => {
+            Builtin::PtLineD => {
+                Val::Num(self.rt_call(RtKind::Geo, rt::geo::PTLINED, &flat_args(self, 0..3)?, 1, false))
+            }
+            Builtin::Rotate if aty(0).is_triple() => {
                 Val::Num(self.rt_call(RtKind::Geo, rt::geo::ROTATE, &flat_args(self, 0..4)?, 3, false))
             }
-            "rotate" => Val::Num(self.rt_call(RtKind::Geo, rt::geo::ROTATE_M, &flat_args(self, 0..3)?, 16, false)),
-            "translate" => Val::Num(self.rt_call(RtKind::Geo, rt::geo::TRANSLATE, &flat_args(self, 0..2)?, 16, false)),
-            "scale" => Val::Num(self.rt_call(RtKind::Geo, rt::geo::SCALE_M, &flat_args(self, 0..2)?, 16, false)),
-            "specularbrdf" => {
+            Builtin::Rotate => {
+                Val::Num(self.rt_call(RtKind::Geo, rt::geo::ROTATE_M, &flat_args(self, 0..3)?, 16, false))
+            }
+            Builtin::Translate => {
+                Val::Num(self.rt_call(RtKind::Geo, rt::geo::TRANSLATE, &flat_args(self, 0..2)?, 16, false))
+            }
+            Builtin::Scale => Val::Num(self.rt_call(RtKind::Geo, rt::geo::SCALE_M, &flat_args(self, 0..2)?, 16, false)),
+            Builtin::SpecularBrdf => {
                 Val::Num(self.rt_call(RtKind::Geo, rt::geo::SPECULARBRDF, &flat_args(self, 0..4)?, 3, false))
             }
-            "xcomp" | "ycomp" | "zcomp" => {
-                let c = match name {
-                    "xcomp" => 0,
-                    "ycomp" => 1,
+            Builtin::XComp | Builtin::YComp | Builtin::ZComp => {
+                let c = match builtin {
+                    Builtin::XComp => 0,
+                    Builtin::YComp => 1,
                     _ => 2,
                 };
                 Val::Num(vec![nums(self, 0)?[c]])
             }
-            "setxcomp" | "setycomp" | "setzcomp" => {
-                let c = match name {
-                    "setxcomp" => 0,
-                    "setycomp" => 1,
+            Builtin::SetXComp | Builtin::SetYComp | Builtin::SetZComp => {
+                let c = match builtin {
+                    Builtin::SetXComp => 0,
+                    Builtin::SetYComp => 1,
                     _ => 2,
                 };
                 if let Some(Some(s)) = outputs.first() {
@@ -3137,12 +3145,12 @@ impl<'c> Cg<'c, '_> {
                 }
                 Val::Void
             }
-            "comp" if aty(0) == BaseType::Matrix => {
+            Builtin::Comp if aty(0) == BaseType::Matrix => {
                 let m = nums(self, 0)?;
                 let (r, c) = (self.const_index(inst.args[1])?, self.const_index(inst.args[2])?);
                 Val::Num(vec![m[r.min(3) * 4 + c.min(3)]])
             }
-            "comp" => {
+            Builtin::Comp => {
                 let vv = nums(self, 0)?;
                 let i = self.floor(nums(self, 1)?[0]);
                 let i = self.minmax(self.minmax(i, self.fc(0.0), true), self.fc(2.0), false);
@@ -3151,7 +3159,7 @@ impl<'c> Cg<'c, '_> {
                 let r = self.sel(is1, vv[1], vv[2]);
                 Val::Num(vec![self.sel(is0, vv[0], r)])
             }
-            "setcomp" => {
+            Builtin::SetComp => {
                 let Some(Some(s)) = outputs.first() else { return Ok(vec![Val::Void]) };
                 let is_matrix = func.slot(*s).ty.base == BaseType::Matrix;
                 let uni = self.slots[s.0 as usize].r == Repr::U;
@@ -3171,14 +3179,14 @@ impl<'c> Cg<'c, '_> {
                 }
                 Val::Void
             }
-            "transform" | "vtransform" | "ntransform" => {
+            Builtin::Transform | Builtin::VTransform | Builtin::NTransform => {
                 let last = n - 1;
                 let x = nums(self, last)?;
                 match (0..n).find(|&i| aty(i) == BaseType::Matrix) {
                     Some(mi) => {
-                        let aux = match (name, inst.ty.base) {
-                            ("vtransform", _) | (_, BaseType::Vector) => rt::geo::XFORM_VECTOR,
-                            ("ntransform", _) | (_, BaseType::Normal) => rt::geo::XFORM_NORMAL,
+                        let aux = match (builtin, inst.ty.base) {
+                            (Builtin::VTransform, _) | (_, BaseType::Vector) => rt::geo::XFORM_VECTOR,
+                            (Builtin::NTransform, _) | (_, BaseType::Normal) => rt::geo::XFORM_NORMAL,
                             _ => rt::geo::XFORM_POINT,
                         };
                         let mut x = x;
@@ -3193,9 +3201,9 @@ impl<'c> Cg<'c, '_> {
                         Val::Num(self.rt_call(RtKind::Geo, aux, &all, 3, false))
                     }
                     None => {
-                        let aux = match (name, inst.ty.base) {
-                            ("vtransform", _) | (_, BaseType::Vector) => rt::geo::XFORM_VECTOR,
-                            ("ntransform", _) | (_, BaseType::Normal) => rt::geo::XFORM_NORMAL,
+                        let aux = match (builtin, inst.ty.base) {
+                            (Builtin::VTransform, _) | (_, BaseType::Vector) => rt::geo::XFORM_VECTOR,
+                            (Builtin::NTransform, _) | (_, BaseType::Normal) => rt::geo::XFORM_NORMAL,
                             _ => rt::geo::XFORM_POINT,
                         };
                         let mut all = if n == 3 {
@@ -3210,7 +3218,7 @@ impl<'c> Cg<'c, '_> {
                     }
                 }
             }
-            "ctransform" => {
+            Builtin::CTransform => {
                 let spaces = (0..n).filter(|&i| aty(i) == BaseType::String).count();
                 let c = nums(self, spaces)?;
                 let from = if spaces == 2 { space_index(&Self::as_str(&args[0])) } else { Some(0) };
@@ -3222,29 +3230,30 @@ impl<'c> Cg<'c, '_> {
                     _ => Val::Num(c),
                 }
             }
-            "determinant" => Val::Num(self.rt_call(RtKind::Geo, rt::geo::DETERMINANT, &nums(self, 0)?, 1, false)),
-            "inverse" => Val::Num(self.rt_call(RtKind::Geo, rt::geo::INVERSE, &nums(self, 0)?, 16, false)),
-            "Du" | "Dv" => {
+            Builtin::Determinant => {
+                Val::Num(self.rt_call(RtKind::Geo, rt::geo::DETERMINANT, &nums(self, 0)?, 1, false))
+            }
+            Builtin::Du | Builtin::Dv => {
                 let x = nums(self, 0)?;
                 let w = x.len() as u32;
-                let idx = if name == "Du" { host::DU } else { host::DV };
+                let idx = if builtin == Builtin::Du { host::DU } else { host::DV };
                 Val::Num(self.host_call(idx, w, &x, w as usize))
             }
-            "Deriv" => {
+            Builtin::Deriv => {
                 let x = nums(self, 0)?;
                 let w = x.len() as u32;
                 let mut all = x;
                 all.extend(nums(self, 1)?);
                 Val::Num(self.host_call(host::DERIV, w, &all, w as usize))
             }
-            "area" => Val::Num(self.rt_call(RtKind::Geo, rt::geo::AREA, &nums(self, 0)?, 1, true)),
-            "calculatenormal" => Val::Num(self.host_call(host::CALCNORMAL, 0, &nums(self, 0)?, 3)),
-            "filterwidth" => {
+            Builtin::Area => Val::Num(self.rt_call(RtKind::Geo, rt::geo::AREA, &nums(self, 0)?, 1, true)),
+            Builtin::CalculateNormal => Val::Num(self.host_call(host::CALCNORMAL, 0, &nums(self, 0)?, 3)),
+            Builtin::FilterWidth => {
                 let x = nums(self, 0)?;
                 let aux = if x.len() == 3 { rt::geo::FILTERWIDTH_P } else { rt::geo::FILTERWIDTH };
                 Val::Num(self.rt_call(RtKind::Geo, aux, &x, 1, true))
             }
-            "filterstep" => {
+            Builtin::FilterStep => {
                 let nnum = (0..n).take_while(|&i| aty(i) != BaseType::String).count();
                 let any_dual =
                     (0..nnum.min(3)).any(|i| matches!(&args[i], Val::Num(c) if c.iter().any(|s| s.r == Repr::D)));
@@ -3258,11 +3267,22 @@ impl<'c> Cg<'c, '_> {
                     Val::Num(self.rt_call(RtKind::Bin, rt::bin::FILTERSTEP, &flat_args(self, 0..2)?, 1, true))
                 }
             }
-            "noise" | "snoise" | "cellnoise" => {
-                let dims = noise_dims(0, n).ok_or_else(|| CgError(format!("{name} arguments")))?;
-                let kind = match name {
-                    "noise" => noise::NoiseKind::Unsigned,
-                    "snoise" => noise::NoiseKind::Signed,
+            Builtin::FilteredPulse => {
+                let (e0, e1, x) = (nums(self, 0)?[0], nums(self, 1)?[0], nums(self, 2)?[0]);
+                if [e0, e1, x].iter().any(|s| s.r == Repr::D) {
+                    let a = self.rt_call(RtKind::Bin, rt::bin::FILTERSTEP, &[e0, x], 1, true)[0];
+                    let b = self.rt_call(RtKind::Bin, rt::bin::FILTERSTEP, &[e1, x], 1, true)[0];
+                    Val::Num(vec![self.sub(a, b)])
+                } else {
+                    // No derivatives: the filter width is 0 and the pulse is a difference of steps.
+                    Val::Num(vec![self.sub(self.step(e0, x), self.step(e1, x))])
+                }
+            }
+            Builtin::Noise | Builtin::SNoise | Builtin::CellNoise => {
+                let dims = noise_dims(0, n).ok_or_else(|| CgError(format!("{builtin} arguments")))?;
+                let kind = match builtin {
+                    Builtin::Noise => noise::NoiseKind::Unsigned,
+                    Builtin::SNoise => noise::NoiseKind::Signed,
                     _ => noise::NoiseKind::Cell,
                 };
                 let coords = flat_args(self, 0..n)?;
@@ -3280,23 +3300,23 @@ impl<'c> Cg<'c, '_> {
                     Val::Num(self.rt_call(RtKind::Noise, k | dims << 4 | (rw as u32) << 8, &coords, rw, false))
                 }
             }
-            "pnoise" | "psnoise" => {
+            Builtin::PNoise | Builtin::PSNoise => {
                 let half = n / 2;
-                let dims = noise_dims(0, half).ok_or_else(|| CgError(format!("{name} arguments")))?;
-                let kind = if name == "pnoise" { rt::nkind::PNOISE } else { rt::nkind::PSNOISE };
+                let dims = noise_dims(0, half).ok_or_else(|| CgError(format!("{builtin} arguments")))?;
+                let kind = if builtin == Builtin::PNoise { rt::nkind::PNOISE } else { rt::nkind::PSNOISE };
                 let aux = kind | dims << 4 | (rw as u32) << 8;
                 Val::Num(self.rt_call(RtKind::Noise, aux, &flat_args(self, 0..n)?, rw, false))
             }
-            "fbm" | "turbulence" => {
+            Builtin::Fbm | Builtin::Turbulence => {
                 let dims = if aty(0).is_triple() { 3 } else { 1 };
                 let used = 1;
-                let kind = if name == "fbm" { rt::nkind::FBM } else { rt::nkind::TURBULENCE };
+                let kind = if builtin == Builtin::Fbm { rt::nkind::FBM } else { rt::nkind::TURBULENCE };
                 let extra = (n - used) as u32;
                 let aux = kind | dims << 4 | 1 << 8 | extra << 12;
                 Val::Num(self.rt_call(RtKind::Noise, aux, &flat_args(self, 0..n)?, 1, false))
             }
-            "random" => Val::Num(self.host_call(host::RANDOM, rw as u32, &[], rw)),
-            "spline" => {
+            Builtin::Random => Val::Num(self.host_call(host::RANDOM, rw as u32, &[], rw)),
+            Builtin::Spline => {
                 let basis = aty(0) == BaseType::String;
                 let first = usize::from(basis);
                 let bname = if basis { Self::as_str(&args[0]) } else { "catmull-rom".to_string() };
@@ -3322,9 +3342,9 @@ impl<'c> Cg<'c, '_> {
                 let aux = nk as u32 | bi << 8 | (w as u32) << 16;
                 Val::Num(self.rt_call(RtKind::Spline, aux, &all, w, false))
             }
-            "ambient" => Val::Num(self.light_call(host::AMBIENT, 0, &[], 3)),
-            "diffuse" => Val::Num(self.light_call(host::DIFFUSE, 0, &nums(self, 0)?, 3)),
-            "specular" => {
+            Builtin::Ambient => Val::Num(self.light_call(host::AMBIENT, 0, &[], 3)),
+            Builtin::Diffuse => Val::Num(self.light_call(host::DIFFUSE, 0, &nums(self, 0)?, 3)),
+            Builtin::Specular => {
                 let args = flat_args(self, 0..3)?;
                 match self.lit_sums(&args) {
                     // specular ++ diffuse [++ ambient]; the call site keeps the sums.
@@ -3332,19 +3352,50 @@ impl<'c> Cg<'c, '_> {
                     None => Val::Num(self.host_call(host::SPECULAR, 0, &args, 3)),
                 }
             }
-            "phong" => Val::Num(self.host_call(host::PHONG, 0, &flat_args(self, 0..3)?, 3)),
-            "trace" => Val::Num(self.host_call(host::TRACE, 0, &flat_args(self, 0..2)?, 3)),
-            "concat" => Val::Str(vec![args.iter().map(Self::as_str).collect()]),
-            "printf" => Val::Void,
-            "match" => {
+            Builtin::Phong => Val::Num(self.host_call(host::PHONG, 0, &flat_args(self, 0..3)?, 3)),
+            Builtin::Trace => Val::Num(self.host_call(host::TRACE, 0, &flat_args(self, 0..2)?, 3)),
+            Builtin::Concat => Val::Str(vec![args.iter().map(Self::as_str).collect()]),
+            Builtin::Printf => Val::Void,
+            Builtin::Match => {
                 let (p, s) = (Self::as_str(&args[0]), Self::as_str(&args[1]));
                 Val::Num(vec![self.fc(if anysl_rsl::back::rust::rt::simple_match(&p, &s) { 1.0 } else { 0.0 })])
             }
-            "surface" | "lightsource" | "displacement" | "atmosphere" | "incident" | "opposite" | "attribute"
-            | "option" | "rendererinfo" | "textureinfo" => Val::Num(vec![self.fc(0.0)]),
-            "shadername" => Val::Str(vec![String::new()]),
-            "depth" => Val::Num(vec![self.read_global(Global::P)[2]]),
-            other => return err(format!("built-in `{other}` is not supported by the JIT")),
+            // Outside a scene: camera rays, nothing occludes, no indirect or caustic light,
+            // nothing blocks transmission (as the interpreter).
+            Builtin::RayInfo
+            | Builtin::RayLevel
+            | Builtin::IsShadowRay
+            | Builtin::IsIndirectRay
+            | Builtin::Occlusion => Val::Num(vec![self.fc(0.0)]),
+            Builtin::IndirectDiffuse | Builtin::Caustic => Val::Num(vec![self.fc(0.0); 3]),
+            Builtin::Transmission => Val::Num(vec![self.fc(1.0); 3]),
+            // Arities the checker never produces.
+            Builtin::Log
+            | Builtin::Atan
+            | Builtin::Pow
+            | Builtin::Mod
+            | Builtin::Min
+            | Builtin::Max
+            | Builtin::Step
+            | Builtin::Clamp
+            | Builtin::Mix
+            | Builtin::SmoothStep => return err(format!("`{builtin}` with {n} arguments")),
+            // Strings are compile-time values in the JIT, and it has no texture host call.
+            Builtin::Format | Builtin::Texture | Builtin::Environment | Builtin::Shadow => {
+                return err(format!("built-in `{builtin}` is not supported by the JIT"))
+            }
+            Builtin::Surface
+            | Builtin::LightSource
+            | Builtin::Displacement
+            | Builtin::Atmosphere
+            | Builtin::Incident
+            | Builtin::Opposite
+            | Builtin::Attribute
+            | Builtin::Option
+            | Builtin::RendererInfo
+            | Builtin::TextureInfo => Val::Num(vec![self.fc(0.0)]),
+            Builtin::ShaderName => Val::Str(vec![String::new()]),
+            Builtin::Depth => Val::Num(vec![self.read_global(Global::P)[2]]),
         };
         // Outputs not produced above keep their values.
         let mut all = vec![res];

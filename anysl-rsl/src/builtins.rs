@@ -44,6 +44,323 @@
 
 use crate::types::BaseType::{self, Color, Float, Matrix, Normal, Point, String, Vector, Void};
 use crate::types::Type;
+use Builtin as B;
+
+macro_rules! builtin_names {
+    ($($(#[$doc:meta])* $v:ident = $n:literal,)*) => {
+        /// A built-in function of RSL, chosen once by the checker: IR calls
+        /// ([`crate::ir::Op::Call`]) carry it, and every back end `match`es on it with no
+        /// catch-all arm, so a built-in one back end lacks does not compile. Its overloads are
+        /// the rows of [`OVERLOADS`] whose [`Overload::builtin`] it is.
+        #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+        pub enum Builtin {
+            $($(#[$doc])* #[doc = concat!("`", $n, "`")] $v,)*
+        }
+
+        impl Builtin {
+            /// Every built-in, in table order.
+            pub const ALL: &'static [Builtin] = &[$(Builtin::$v,)*];
+
+            /// The RSL name.
+            #[must_use]
+            pub const fn name(self) -> &'static str {
+                match self {
+                    $(Builtin::$v => $n,)*
+                }
+            }
+
+            /// The built-in called `name` in RSL.
+            #[must_use]
+            pub fn from_name(name: &str) -> Option<Builtin> {
+                match name {
+                    $($n => Some(Builtin::$v),)*
+                    _ => None,
+                }
+            }
+        }
+    };
+}
+
+builtin_names! {
+    Radians = "radians",
+    Degrees = "degrees",
+    Sin = "sin",
+    Asin = "asin",
+    Cos = "cos",
+    Acos = "acos",
+    Tan = "tan",
+    Exp = "exp",
+    Sqrt = "sqrt",
+    InverseSqrt = "inversesqrt",
+    Abs = "abs",
+    Sign = "sign",
+    Floor = "floor",
+    Ceil = "ceil",
+    Round = "round",
+    Atan = "atan",
+    Pow = "pow",
+    Log = "log",
+    Mod = "mod",
+    Min = "min",
+    Max = "max",
+    Clamp = "clamp",
+    Mix = "mix",
+    Step = "step",
+    SmoothStep = "smoothstep",
+    FilterStep = "filterstep",
+    Spline = "spline",
+    Du = "Du",
+    Dv = "Dv",
+    Deriv = "Deriv",
+    Noise = "noise",
+    CellNoise = "cellnoise",
+    SNoise = "snoise",
+    PNoise = "pnoise",
+    PSNoise = "psnoise",
+    Random = "random",
+    Fbm = "fbm",
+    Turbulence = "turbulence",
+    XComp = "xcomp",
+    YComp = "ycomp",
+    ZComp = "zcomp",
+    SetXComp = "setxcomp",
+    SetYComp = "setycomp",
+    SetZComp = "setzcomp",
+    Comp = "comp",
+    SetComp = "setcomp",
+    Length = "length",
+    Normalize = "normalize",
+    Distance = "distance",
+    PtLineD = "ptlined",
+    Rotate = "rotate",
+    Area = "area",
+    FaceForward = "faceforward",
+    Reflect = "reflect",
+    Refract = "refract",
+    Fresnel = "fresnel",
+    Transform = "transform",
+    VTransform = "vtransform",
+    NTransform = "ntransform",
+    Depth = "depth",
+    CalculateNormal = "calculatenormal",
+    CTransform = "ctransform",
+    Determinant = "determinant",
+    Translate = "translate",
+    Scale = "scale",
+    Concat = "concat",
+    Printf = "printf",
+    Format = "format",
+    Match = "match",
+    Ambient = "ambient",
+    Diffuse = "diffuse",
+    Specular = "specular",
+    SpecularBrdf = "specularbrdf",
+    Phong = "phong",
+    Trace = "trace",
+    Texture = "texture",
+    Environment = "environment",
+    Shadow = "shadow",
+    TextureInfo = "textureinfo",
+    Atmosphere = "atmosphere",
+    Displacement = "displacement",
+    LightSource = "lightsource",
+    Surface = "surface",
+    Incident = "incident",
+    Opposite = "opposite",
+    Attribute = "attribute",
+    Option = "option",
+    RendererInfo = "rendererinfo",
+    RayInfo = "rayinfo",
+    RayLevel = "raylevel",
+    IsShadowRay = "isshadowray",
+    IsIndirectRay = "isindirectray",
+    Occlusion = "occlusion",
+    IndirectDiffuse = "indirectdiffuse",
+    Caustic = "caustic",
+    Transmission = "transmission",
+    ShaderName = "shadername",
+    FilterWidth = "filterwidth",
+    FilteredPulse = "filteredpulse",
+}
+
+impl std::fmt::Display for Builtin {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl Builtin {
+    /// Needs the derivatives of (some of) its arguments: the derivative-activity analysis
+    /// marks them, and dual-number back ends carry them.
+    #[must_use]
+    pub const fn uses_derivatives(self) -> bool {
+        use Builtin as B;
+        matches!(
+            self,
+            B::Du
+                | B::Dv
+                | B::Deriv
+                | B::Area
+                | B::CalculateNormal
+                | B::FilterWidth
+                | B::FilterStep
+                | B::Texture
+                | B::Environment
+                | B::Shadow
+        )
+    }
+
+    /// The result depends on more than the arguments (the renderer, the lights, the
+    /// derivatives of the arguments, a random stream, the named spaces) or the call has a side
+    /// effect: never folded, never computed once for uniform arguments.
+    #[must_use]
+    pub const fn reads_context(self) -> bool {
+        use Builtin as B;
+        matches!(
+            self,
+            B::Printf
+                | B::Random
+                | B::Trace
+                | B::Texture
+                | B::Environment
+                | B::Shadow
+                | B::Ambient
+                | B::Diffuse
+                | B::Specular
+                | B::SpecularBrdf
+                | B::Phong
+                | B::Atmosphere
+                | B::Displacement
+                | B::LightSource
+                | B::Surface
+                | B::Incident
+                | B::Opposite
+                | B::Attribute
+                | B::Option
+                | B::RendererInfo
+                | B::TextureInfo
+                | B::Depth
+                | B::Du
+                | B::Dv
+                | B::Deriv
+                | B::Area
+                | B::CalculateNormal
+                | B::FilterWidth
+                | B::FilterStep
+                | B::ShaderName
+                | B::Transform
+                | B::VTransform
+                | B::NTransform
+                | B::CTransform
+        )
+    }
+
+    /// Needs the shading context or the globals, so a back end never computes it on scalars
+    /// even when every argument is uniform.
+    #[must_use]
+    pub const fn lane_only(self) -> bool {
+        use Builtin as B;
+        matches!(
+            self,
+            B::Du
+                | B::Dv
+                | B::Deriv
+                | B::CalculateNormal
+                | B::Random
+                | B::Ambient
+                | B::Diffuse
+                | B::Specular
+                | B::Phong
+                | B::Trace
+                | B::Texture
+                | B::Environment
+                | B::Shadow
+                | B::Depth
+                | B::Area
+                | B::FilterWidth
+                | B::FilterStep
+                | B::FaceForward
+        )
+    }
+
+    /// Calls the renderer through the shading context itself (its lights or its rays), not only
+    /// its globals.
+    #[must_use]
+    pub const fn calls_renderer(self) -> bool {
+        use Builtin as B;
+        matches!(self, B::Ambient | B::Diffuse | B::Specular | B::Phong | B::Trace)
+    }
+
+    /// Has an effect besides its value (output arguments aside): never removed when unused.
+    #[must_use]
+    pub const fn has_side_effect(self) -> bool {
+        matches!(self, Builtin::Printf)
+    }
+
+    /// Takes a coordinate-system name among its arguments (`transform("world", P)`).
+    #[must_use]
+    pub const fn names_space(self) -> bool {
+        matches!(self, Builtin::Transform | Builtin::VTransform | Builtin::NTransform)
+    }
+
+    /// The result differs between shading points even for uniform arguments (lights, rays,
+    /// textures, random numbers, derivatives, named spaces).
+    #[must_use]
+    pub const fn varies_per_point(self) -> bool {
+        use Builtin as B;
+        matches!(
+            self,
+            B::Random
+                | B::Ambient
+                | B::Diffuse
+                | B::Specular
+                | B::SpecularBrdf
+                | B::Phong
+                | B::Trace
+                | B::Environment
+                | B::Shadow
+                | B::Texture
+                | B::Depth
+                | B::Incident
+                | B::Opposite
+                | B::LightSource
+                | B::Surface
+                | B::Displacement
+                | B::Atmosphere
+                | B::CalculateNormal
+                | B::Du
+                | B::Dv
+                | B::Deriv
+                | B::Area
+                | B::FilterWidth
+                | B::FilterStep
+                | B::Transform
+                | B::VTransform
+                | B::NTransform
+        )
+    }
+
+    /// The globals a call with `nargs` input arguments reads from the renderer behind its
+    /// arguments' backs: `P` for the light loops, `random` and `depth`; every global for the
+    /// derivative and texture functions (the differentials are taken from them); `Ng` for the
+    /// two-argument `faceforward`.
+    #[must_use]
+    pub fn globals_read(self, nargs: usize) -> anysl_core::GlobalSet {
+        use anysl_core::GlobalSet as S;
+        use Builtin as B;
+        match self {
+            B::Du | B::Dv | B::Deriv | B::CalculateNormal | B::Texture | B::Environment | B::Shadow => S::ALL,
+            B::Ambient | B::Diffuse | B::Specular | B::Phong | B::Random | B::Depth => S::P,
+            B::FaceForward if nargs == 2 => S::NG,
+            _ => S::NONE,
+        }
+    }
+
+    /// Its overloads, as indices into [`OVERLOADS`].
+    pub fn overloads(self) -> impl Iterator<Item = u32> {
+        OVERLOADS.iter().enumerate().filter(move |(_, o)| o.builtin == self).map(|(i, _)| i as u32)
+    }
+}
 
 /// One formal parameter of a built-in.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -72,8 +389,8 @@ pub enum Variadic {
 /// One overload of a built-in function.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Overload {
-    /// The RSL name.
-    pub name: &'static str,
+    /// The built-in it is an overload of.
+    pub builtin: Builtin,
     /// Unique key, `<name>_<args>` (see the module docs); back ends dispatch on it.
     pub key: &'static str,
     /// Return type (`Void` for none).
@@ -108,7 +425,7 @@ const OUT_ANY: ArgSpec = ArgSpec { ty: Float, output: true, array: false, any: t
 
 #[allow(clippy::too_many_arguments)]
 const fn ov(
-    name: &'static str,
+    builtin: Builtin,
     key: &'static str,
     ret: BaseType,
     params: &'static [ArgSpec],
@@ -116,61 +433,61 @@ const fn ov(
     imp: &'static str,
     always_varying: bool,
 ) -> Overload {
-    Overload { name, key, ret, params, variadic, imp, always_varying }
+    Overload { builtin, key, ret, params, variadic, imp, always_varying }
 }
 
 /// Every overload of every built-in, grouped by function.
 pub static OVERLOADS: &[Overload] = &[
-    ov("radians", "radians_f", Float, &[F], None, "stdlib::radians", false),
-    ov("degrees", "degrees_f", Float, &[F], None, "stdlib::degrees", false),
-    ov("sin", "sin_f", Float, &[F], None, "F::sin", false),
-    ov("asin", "asin_f", Float, &[F], None, "F::asin", false),
-    ov("cos", "cos_f", Float, &[F], None, "F::cos", false),
-    ov("acos", "acos_f", Float, &[F], None, "F::acos", false),
-    ov("tan", "tan_f", Float, &[F], None, "F::tan", false),
-    ov("exp", "exp_f", Float, &[F], None, "F::exp", false),
-    ov("sqrt", "sqrt_f", Float, &[F], None, "F::sqrt", false),
-    ov("inversesqrt", "inversesqrt_f", Float, &[F], None, "stdlib::inversesqrt", false),
-    ov("abs", "abs_f", Float, &[F], None, "F::abs", false),
-    ov("sign", "sign_f", Float, &[F], None, "stdlib::sign", false),
-    ov("floor", "floor_f", Float, &[F], None, "F::floor", false),
-    ov("ceil", "ceil_f", Float, &[F], None, "F::ceil", false),
-    ov("round", "round_f", Float, &[F], None, "F::round", false),
-    ov("atan", "atan_f", Float, &[F], None, "F::atan", false),
-    ov("atan", "atan_ff", Float, &[F, F], None, "F::atan2", false),
-    ov("pow", "pow_ff", Float, &[F, F], None, "F::powf", false),
-    ov("log", "log_f", Float, &[F], None, "F::ln", false),
-    ov("log", "log_ff", Float, &[F, F], None, "stdlib::log_base", false),
-    ov("mod", "mod_ff", Float, &[F, F], None, "stdlib::fmod", false),
-    ov("min", "min_ff_fs", Float, &[F, F], Some(Variadic::Repeat(Float)), "F::min per component", false),
-    ov("min", "min_cc_cs", Color, &[C, C], Some(Variadic::Repeat(Color)), "F::min per component", false),
-    ov("min", "min_pp_ps", Point, &[P, P], Some(Variadic::Repeat(Point)), "F::min per component", false),
-    ov("min", "min_vv_vs", Vector, &[V, V], Some(Variadic::Repeat(Vector)), "F::min per component", false),
-    ov("min", "min_nn_ns", Normal, &[N, N], Some(Variadic::Repeat(Normal)), "F::min per component", false),
-    ov("max", "max_ff_fs", Float, &[F, F], Some(Variadic::Repeat(Float)), "F::max per component", false),
-    ov("max", "max_cc_cs", Color, &[C, C], Some(Variadic::Repeat(Color)), "F::max per component", false),
-    ov("max", "max_pp_ps", Point, &[P, P], Some(Variadic::Repeat(Point)), "F::max per component", false),
-    ov("max", "max_vv_vs", Vector, &[V, V], Some(Variadic::Repeat(Vector)), "F::max per component", false),
-    ov("max", "max_nn_ns", Normal, &[N, N], Some(Variadic::Repeat(Normal)), "F::max per component", false),
-    ov("clamp", "clamp_fff", Float, &[F, F, F], None, "stdlib::clamp per component", false),
-    ov("clamp", "clamp_ccc", Color, &[C, C, C], None, "stdlib::clamp per component", false),
-    ov("clamp", "clamp_ppp", Point, &[P, P, P], None, "stdlib::clamp per component", false),
-    ov("clamp", "clamp_vvv", Vector, &[V, V, V], None, "stdlib::clamp per component", false),
-    ov("clamp", "clamp_nnn", Normal, &[N, N, N], None, "stdlib::clamp per component", false),
-    ov("mix", "mix_fff", Float, &[F, F, F], None, "stdlib::mix", false),
-    ov("mix", "mix_ccf", Color, &[C, C, F], None, "stdlib::mix per component", false),
-    ov("mix", "mix_ccc", Color, &[C, C, C], None, "stdlib::mix per component", false),
-    ov("mix", "mix_ppf", Point, &[P, P, F], None, "stdlib::mix per component", false),
-    ov("mix", "mix_ppp", Point, &[P, P, P], None, "stdlib::mix per component", false),
-    ov("mix", "mix_vvf", Vector, &[V, V, F], None, "stdlib::mix per component", false),
-    ov("mix", "mix_vvv", Vector, &[V, V, V], None, "stdlib::mix per component", false),
-    ov("mix", "mix_nnf", Normal, &[N, N, F], None, "stdlib::mix per component", false),
-    ov("mix", "mix_nnn", Normal, &[N, N, N], None, "stdlib::mix per component", false),
-    ov("step", "step_ff", Float, &[F, F], None, "stdlib::step", false),
-    ov("smoothstep", "smoothstep_fff", Float, &[F, F, F], None, "stdlib::smoothstep", false),
-    ov("filterstep", "filterstep_ff_opt", Float, &[F, F], Some(Variadic::NameValue), "stdlib::filterstep", false),
+    ov(B::Radians, "radians_f", Float, &[F], None, "stdlib::radians", false),
+    ov(B::Degrees, "degrees_f", Float, &[F], None, "stdlib::degrees", false),
+    ov(B::Sin, "sin_f", Float, &[F], None, "F::sin", false),
+    ov(B::Asin, "asin_f", Float, &[F], None, "F::asin", false),
+    ov(B::Cos, "cos_f", Float, &[F], None, "F::cos", false),
+    ov(B::Acos, "acos_f", Float, &[F], None, "F::acos", false),
+    ov(B::Tan, "tan_f", Float, &[F], None, "F::tan", false),
+    ov(B::Exp, "exp_f", Float, &[F], None, "F::exp", false),
+    ov(B::Sqrt, "sqrt_f", Float, &[F], None, "F::sqrt", false),
+    ov(B::InverseSqrt, "inversesqrt_f", Float, &[F], None, "stdlib::inversesqrt", false),
+    ov(B::Abs, "abs_f", Float, &[F], None, "F::abs", false),
+    ov(B::Sign, "sign_f", Float, &[F], None, "stdlib::sign", false),
+    ov(B::Floor, "floor_f", Float, &[F], None, "F::floor", false),
+    ov(B::Ceil, "ceil_f", Float, &[F], None, "F::ceil", false),
+    ov(B::Round, "round_f", Float, &[F], None, "F::round", false),
+    ov(B::Atan, "atan_f", Float, &[F], None, "F::atan", false),
+    ov(B::Atan, "atan_ff", Float, &[F, F], None, "F::atan2", false),
+    ov(B::Pow, "pow_ff", Float, &[F, F], None, "F::powf", false),
+    ov(B::Log, "log_f", Float, &[F], None, "F::ln", false),
+    ov(B::Log, "log_ff", Float, &[F, F], None, "stdlib::log_base", false),
+    ov(B::Mod, "mod_ff", Float, &[F, F], None, "stdlib::fmod", false),
+    ov(B::Min, "min_ff_fs", Float, &[F, F], Some(Variadic::Repeat(Float)), "F::min per component", false),
+    ov(B::Min, "min_cc_cs", Color, &[C, C], Some(Variadic::Repeat(Color)), "F::min per component", false),
+    ov(B::Min, "min_pp_ps", Point, &[P, P], Some(Variadic::Repeat(Point)), "F::min per component", false),
+    ov(B::Min, "min_vv_vs", Vector, &[V, V], Some(Variadic::Repeat(Vector)), "F::min per component", false),
+    ov(B::Min, "min_nn_ns", Normal, &[N, N], Some(Variadic::Repeat(Normal)), "F::min per component", false),
+    ov(B::Max, "max_ff_fs", Float, &[F, F], Some(Variadic::Repeat(Float)), "F::max per component", false),
+    ov(B::Max, "max_cc_cs", Color, &[C, C], Some(Variadic::Repeat(Color)), "F::max per component", false),
+    ov(B::Max, "max_pp_ps", Point, &[P, P], Some(Variadic::Repeat(Point)), "F::max per component", false),
+    ov(B::Max, "max_vv_vs", Vector, &[V, V], Some(Variadic::Repeat(Vector)), "F::max per component", false),
+    ov(B::Max, "max_nn_ns", Normal, &[N, N], Some(Variadic::Repeat(Normal)), "F::max per component", false),
+    ov(B::Clamp, "clamp_fff", Float, &[F, F, F], None, "stdlib::clamp per component", false),
+    ov(B::Clamp, "clamp_ccc", Color, &[C, C, C], None, "stdlib::clamp per component", false),
+    ov(B::Clamp, "clamp_ppp", Point, &[P, P, P], None, "stdlib::clamp per component", false),
+    ov(B::Clamp, "clamp_vvv", Vector, &[V, V, V], None, "stdlib::clamp per component", false),
+    ov(B::Clamp, "clamp_nnn", Normal, &[N, N, N], None, "stdlib::clamp per component", false),
+    ov(B::Mix, "mix_fff", Float, &[F, F, F], None, "stdlib::mix", false),
+    ov(B::Mix, "mix_ccf", Color, &[C, C, F], None, "stdlib::mix per component", false),
+    ov(B::Mix, "mix_ccc", Color, &[C, C, C], None, "stdlib::mix per component", false),
+    ov(B::Mix, "mix_ppf", Point, &[P, P, F], None, "stdlib::mix per component", false),
+    ov(B::Mix, "mix_ppp", Point, &[P, P, P], None, "stdlib::mix per component", false),
+    ov(B::Mix, "mix_vvf", Vector, &[V, V, F], None, "stdlib::mix per component", false),
+    ov(B::Mix, "mix_vvv", Vector, &[V, V, V], None, "stdlib::mix per component", false),
+    ov(B::Mix, "mix_nnf", Normal, &[N, N, F], None, "stdlib::mix per component", false),
+    ov(B::Mix, "mix_nnn", Normal, &[N, N, N], None, "stdlib::mix per component", false),
+    ov(B::Step, "step_ff", Float, &[F, F], None, "stdlib::step", false),
+    ov(B::SmoothStep, "smoothstep_fff", Float, &[F, F, F], None, "stdlib::smoothstep", false),
+    ov(B::FilterStep, "filterstep_ff_opt", Float, &[F, F], Some(Variadic::NameValue), "stdlib::filterstep", false),
     ov(
-        "filterstep",
+        B::FilterStep,
         "filterstep_fff_opt",
         Float,
         &[F, F, F],
@@ -179,7 +496,7 @@ pub static OVERLOADS: &[Overload] = &[
         false,
     ),
     ov(
-        "spline",
+        B::Spline,
         "spline_ffff_fs",
         Float,
         &[F, F, F, F],
@@ -188,7 +505,7 @@ pub static OVERLOADS: &[Overload] = &[
         false,
     ),
     ov(
-        "spline",
+        B::Spline,
         "spline_sffff_fs",
         Float,
         &[S, F, F, F, F],
@@ -196,9 +513,9 @@ pub static OVERLOADS: &[Overload] = &[
         "stdlib::spline (SplineBasis::from_name)",
         false,
     ),
-    ov("spline", "spline_ffa", Float, &[F, arr(Float)], None, "stdlib::spline (catmull-rom, array knots)", false),
+    ov(B::Spline, "spline_ffa", Float, &[F, arr(Float)], None, "stdlib::spline (catmull-rom, array knots)", false),
     ov(
-        "spline",
+        B::Spline,
         "spline_sffa",
         Float,
         &[S, F, arr(Float)],
@@ -207,7 +524,7 @@ pub static OVERLOADS: &[Overload] = &[
         false,
     ),
     ov(
-        "spline",
+        B::Spline,
         "spline_fccc_cs",
         Color,
         &[F, C, C, C],
@@ -216,7 +533,7 @@ pub static OVERLOADS: &[Overload] = &[
         false,
     ),
     ov(
-        "spline",
+        B::Spline,
         "spline_sfccc_cs",
         Color,
         &[S, F, C, C, C],
@@ -224,9 +541,9 @@ pub static OVERLOADS: &[Overload] = &[
         "stdlib::spline (SplineBasis::from_name)",
         false,
     ),
-    ov("spline", "spline_fca", Color, &[F, arr(Color)], None, "stdlib::spline (catmull-rom, array knots)", false),
+    ov(B::Spline, "spline_fca", Color, &[F, arr(Color)], None, "stdlib::spline (catmull-rom, array knots)", false),
     ov(
-        "spline",
+        B::Spline,
         "spline_sfca",
         Color,
         &[S, F, arr(Color)],
@@ -235,7 +552,7 @@ pub static OVERLOADS: &[Overload] = &[
         false,
     ),
     ov(
-        "spline",
+        B::Spline,
         "spline_fppp_ps",
         Point,
         &[F, P, P, P],
@@ -244,7 +561,7 @@ pub static OVERLOADS: &[Overload] = &[
         false,
     ),
     ov(
-        "spline",
+        B::Spline,
         "spline_sfppp_ps",
         Point,
         &[S, F, P, P, P],
@@ -252,9 +569,9 @@ pub static OVERLOADS: &[Overload] = &[
         "stdlib::spline (SplineBasis::from_name)",
         false,
     ),
-    ov("spline", "spline_fpa", Point, &[F, arr(Point)], None, "stdlib::spline (catmull-rom, array knots)", false),
+    ov(B::Spline, "spline_fpa", Point, &[F, arr(Point)], None, "stdlib::spline (catmull-rom, array knots)", false),
     ov(
-        "spline",
+        B::Spline,
         "spline_sfpa",
         Point,
         &[S, F, arr(Point)],
@@ -263,7 +580,7 @@ pub static OVERLOADS: &[Overload] = &[
         false,
     ),
     ov(
-        "spline",
+        B::Spline,
         "spline_fvvv_vs",
         Vector,
         &[F, V, V, V],
@@ -272,7 +589,7 @@ pub static OVERLOADS: &[Overload] = &[
         false,
     ),
     ov(
-        "spline",
+        B::Spline,
         "spline_sfvvv_vs",
         Vector,
         &[S, F, V, V, V],
@@ -280,9 +597,9 @@ pub static OVERLOADS: &[Overload] = &[
         "stdlib::spline (SplineBasis::from_name)",
         false,
     ),
-    ov("spline", "spline_fva", Vector, &[F, arr(Vector)], None, "stdlib::spline (catmull-rom, array knots)", false),
+    ov(B::Spline, "spline_fva", Vector, &[F, arr(Vector)], None, "stdlib::spline (catmull-rom, array knots)", false),
     ov(
-        "spline",
+        B::Spline,
         "spline_sfva",
         Vector,
         &[S, F, arr(Vector)],
@@ -291,7 +608,7 @@ pub static OVERLOADS: &[Overload] = &[
         false,
     ),
     ov(
-        "spline",
+        B::Spline,
         "spline_fnnn_ns",
         Normal,
         &[F, N, N, N],
@@ -300,7 +617,7 @@ pub static OVERLOADS: &[Overload] = &[
         false,
     ),
     ov(
-        "spline",
+        B::Spline,
         "spline_sfnnn_ns",
         Normal,
         &[S, F, N, N, N],
@@ -308,9 +625,9 @@ pub static OVERLOADS: &[Overload] = &[
         "stdlib::spline (SplineBasis::from_name)",
         false,
     ),
-    ov("spline", "spline_fna", Normal, &[F, arr(Normal)], None, "stdlib::spline (catmull-rom, array knots)", false),
+    ov(B::Spline, "spline_fna", Normal, &[F, arr(Normal)], None, "stdlib::spline (catmull-rom, array knots)", false),
     ov(
-        "spline",
+        B::Spline,
         "spline_sfna",
         Normal,
         &[S, F, arr(Normal)],
@@ -318,90 +635,106 @@ pub static OVERLOADS: &[Overload] = &[
         "stdlib::spline (SplineBasis::from_name, array knots)",
         false,
     ),
-    ov("Du", "Du_f", Float, &[F], None, "stdlib::du", false),
-    ov("Dv", "Dv_f", Float, &[F], None, "stdlib::dv", false),
-    ov("Deriv", "Deriv_ff", Float, &[F, F], None, "stdlib::deriv", false),
-    ov("Du", "Du_c", Color, &[C], None, "stdlib::du / du_vec per component", false),
-    ov("Dv", "Dv_c", Color, &[C], None, "stdlib::dv / dv_vec per component", false),
-    ov("Deriv", "Deriv_cf", Color, &[C, F], None, "stdlib::deriv per component", false),
-    ov("Du", "Du_p", Vector, &[P], None, "stdlib::du / du_vec per component", false),
-    ov("Dv", "Dv_p", Vector, &[P], None, "stdlib::dv / dv_vec per component", false),
-    ov("Deriv", "Deriv_pf", Vector, &[P, F], None, "stdlib::deriv per component", false),
-    ov("Du", "Du_v", Vector, &[V], None, "stdlib::du / du_vec per component", false),
-    ov("Dv", "Dv_v", Vector, &[V], None, "stdlib::dv / dv_vec per component", false),
-    ov("Deriv", "Deriv_vf", Vector, &[V, F], None, "stdlib::deriv per component", false),
-    ov("Du", "Du_n", Vector, &[N], None, "stdlib::du / du_vec per component", false),
-    ov("Dv", "Dv_n", Vector, &[N], None, "stdlib::dv / dv_vec per component", false),
-    ov("Deriv", "Deriv_nf", Vector, &[N, F], None, "stdlib::deriv per component", false),
-    ov("noise", "noise_ff", Float, &[F], None, "stdlib::noise (NoiseDomain::D1)", false),
-    ov("noise", "noise_cf", Color, &[F], None, "stdlib::cnoise (NoiseDomain::D1)", false),
-    ov("noise", "noise_pf", Point, &[F], None, "stdlib::vnoise (NoiseDomain::D1)", false),
-    ov("noise", "noise_vf", Vector, &[F], None, "stdlib::vnoise (NoiseDomain::D1)", false),
-    ov("noise", "noise_fff", Float, &[F, F], None, "stdlib::noise (NoiseDomain::D2)", false),
-    ov("noise", "noise_cff", Color, &[F, F], None, "stdlib::cnoise (NoiseDomain::D2)", false),
-    ov("noise", "noise_pff", Point, &[F, F], None, "stdlib::vnoise (NoiseDomain::D2)", false),
-    ov("noise", "noise_vff", Vector, &[F, F], None, "stdlib::vnoise (NoiseDomain::D2)", false),
-    ov("noise", "noise_fp", Float, &[P], None, "stdlib::noise (NoiseDomain::D3)", false),
-    ov("noise", "noise_cp", Color, &[P], None, "stdlib::cnoise (NoiseDomain::D3)", false),
-    ov("noise", "noise_pp", Point, &[P], None, "stdlib::vnoise (NoiseDomain::D3)", false),
-    ov("noise", "noise_vp", Vector, &[P], None, "stdlib::vnoise (NoiseDomain::D3)", false),
-    ov("noise", "noise_fpf", Float, &[P, F], None, "stdlib::noise (NoiseDomain::D4)", false),
-    ov("noise", "noise_cpf", Color, &[P, F], None, "stdlib::cnoise (NoiseDomain::D4)", false),
-    ov("noise", "noise_ppf", Point, &[P, F], None, "stdlib::vnoise (NoiseDomain::D4)", false),
-    ov("noise", "noise_vpf", Vector, &[P, F], None, "stdlib::vnoise (NoiseDomain::D4)", false),
-    ov("cellnoise", "cellnoise_ff", Float, &[F], None, "stdlib::cellnoise (NoiseDomain::D1)", false),
-    ov("cellnoise", "cellnoise_cf", Color, &[F], None, "stdlib::vcellnoise (NoiseDomain::D1)", false),
-    ov("cellnoise", "cellnoise_pf", Point, &[F], None, "stdlib::vcellnoise (NoiseDomain::D1)", false),
-    ov("cellnoise", "cellnoise_vf", Vector, &[F], None, "stdlib::vcellnoise (NoiseDomain::D1)", false),
-    ov("cellnoise", "cellnoise_fff", Float, &[F, F], None, "stdlib::cellnoise (NoiseDomain::D2)", false),
-    ov("cellnoise", "cellnoise_cff", Color, &[F, F], None, "stdlib::vcellnoise (NoiseDomain::D2)", false),
-    ov("cellnoise", "cellnoise_pff", Point, &[F, F], None, "stdlib::vcellnoise (NoiseDomain::D2)", false),
-    ov("cellnoise", "cellnoise_vff", Vector, &[F, F], None, "stdlib::vcellnoise (NoiseDomain::D2)", false),
-    ov("cellnoise", "cellnoise_fp", Float, &[P], None, "stdlib::cellnoise (NoiseDomain::D3)", false),
-    ov("cellnoise", "cellnoise_cp", Color, &[P], None, "stdlib::vcellnoise (NoiseDomain::D3)", false),
-    ov("cellnoise", "cellnoise_pp", Point, &[P], None, "stdlib::vcellnoise (NoiseDomain::D3)", false),
-    ov("cellnoise", "cellnoise_vp", Vector, &[P], None, "stdlib::vcellnoise (NoiseDomain::D3)", false),
-    ov("cellnoise", "cellnoise_fpf", Float, &[P, F], None, "stdlib::cellnoise (NoiseDomain::D4)", false),
-    ov("cellnoise", "cellnoise_cpf", Color, &[P, F], None, "stdlib::vcellnoise (NoiseDomain::D4)", false),
-    ov("cellnoise", "cellnoise_ppf", Point, &[P, F], None, "stdlib::vcellnoise (NoiseDomain::D4)", false),
-    ov("cellnoise", "cellnoise_vpf", Vector, &[P, F], None, "stdlib::vcellnoise (NoiseDomain::D4)", false),
-    ov("snoise", "snoise_ff", Float, &[F], None, "stdlib::snoise (NoiseDomain::D1)", false),
-    ov("snoise", "snoise_cf", Color, &[F], None, "stdlib::vsnoise (NoiseDomain::D1)", false),
-    ov("snoise", "snoise_pf", Point, &[F], None, "stdlib::vsnoise (NoiseDomain::D1)", false),
-    ov("snoise", "snoise_vf", Vector, &[F], None, "stdlib::vsnoise (NoiseDomain::D1)", false),
-    ov("snoise", "snoise_fff", Float, &[F, F], None, "stdlib::snoise (NoiseDomain::D2)", false),
-    ov("snoise", "snoise_cff", Color, &[F, F], None, "stdlib::vsnoise (NoiseDomain::D2)", false),
-    ov("snoise", "snoise_pff", Point, &[F, F], None, "stdlib::vsnoise (NoiseDomain::D2)", false),
-    ov("snoise", "snoise_vff", Vector, &[F, F], None, "stdlib::vsnoise (NoiseDomain::D2)", false),
-    ov("snoise", "snoise_fp", Float, &[P], None, "stdlib::snoise (NoiseDomain::D3)", false),
-    ov("snoise", "snoise_cp", Color, &[P], None, "stdlib::vsnoise (NoiseDomain::D3)", false),
-    ov("snoise", "snoise_pp", Point, &[P], None, "stdlib::vsnoise (NoiseDomain::D3)", false),
-    ov("snoise", "snoise_vp", Vector, &[P], None, "stdlib::vsnoise (NoiseDomain::D3)", false),
-    ov("snoise", "snoise_fpf", Float, &[P, F], None, "stdlib::snoise (NoiseDomain::D4)", false),
-    ov("snoise", "snoise_cpf", Color, &[P, F], None, "stdlib::vsnoise (NoiseDomain::D4)", false),
-    ov("snoise", "snoise_ppf", Point, &[P, F], None, "stdlib::vsnoise (NoiseDomain::D4)", false),
-    ov("snoise", "snoise_vpf", Vector, &[P, F], None, "stdlib::vsnoise (NoiseDomain::D4)", false),
-    ov("pnoise", "pnoise_fff", Float, &[F, F], None, "stdlib::pnoise (NoiseDomain::D1)", false),
-    ov("pnoise", "pnoise_cff", Color, &[F, F], None, "stdlib::vpnoise (NoiseDomain::D1)", false),
-    ov("pnoise", "pnoise_pff", Point, &[F, F], None, "stdlib::vpnoise (NoiseDomain::D1)", false),
-    ov("pnoise", "pnoise_vff", Vector, &[F, F], None, "stdlib::vpnoise (NoiseDomain::D1)", false),
-    ov("pnoise", "pnoise_fffff", Float, &[F, F, F, F], None, "stdlib::pnoise (NoiseDomain::D2)", false),
-    ov("pnoise", "pnoise_cffff", Color, &[F, F, F, F], None, "stdlib::vpnoise (NoiseDomain::D2)", false),
-    ov("pnoise", "pnoise_pffff", Point, &[F, F, F, F], None, "stdlib::vpnoise (NoiseDomain::D2)", false),
-    ov("pnoise", "pnoise_vffff", Vector, &[F, F, F, F], None, "stdlib::vpnoise (NoiseDomain::D2)", false),
-    ov("pnoise", "pnoise_fpp", Float, &[P, P], None, "stdlib::pnoise (NoiseDomain::D3)", false),
-    ov("pnoise", "pnoise_cpp", Color, &[P, P], None, "stdlib::vpnoise (NoiseDomain::D3)", false),
-    ov("pnoise", "pnoise_ppp", Point, &[P, P], None, "stdlib::vpnoise (NoiseDomain::D3)", false),
-    ov("pnoise", "pnoise_vpp", Vector, &[P, P], None, "stdlib::vpnoise (NoiseDomain::D3)", false),
-    ov("pnoise", "pnoise_fpfpf", Float, &[P, F, P, F], None, "stdlib::pnoise (NoiseDomain::D4)", false),
-    ov("pnoise", "pnoise_cpfpf", Color, &[P, F, P, F], None, "stdlib::vpnoise (NoiseDomain::D4)", false),
-    ov("pnoise", "pnoise_ppfpf", Point, &[P, F, P, F], None, "stdlib::vpnoise (NoiseDomain::D4)", false),
-    ov("pnoise", "pnoise_vpfpf", Vector, &[P, F, P, F], None, "stdlib::vpnoise (NoiseDomain::D4)", false),
-    ov("psnoise", "psnoise_fff", Float, &[F, F], None, "stdlib::psnoise (NoiseDomain::D1)", false),
-    ov("psnoise", "psnoise_cff", Color, &[F, F], None, "stdlib::vpnoise, remapped to [-1, 1] (NoiseDomain::D1)", false),
-    ov("psnoise", "psnoise_pff", Point, &[F, F], None, "stdlib::vpnoise, remapped to [-1, 1] (NoiseDomain::D1)", false),
+    ov(B::Du, "Du_f", Float, &[F], None, "stdlib::du", false),
+    ov(B::Dv, "Dv_f", Float, &[F], None, "stdlib::dv", false),
+    ov(B::Deriv, "Deriv_ff", Float, &[F, F], None, "stdlib::deriv", false),
+    ov(B::Du, "Du_c", Color, &[C], None, "stdlib::du / du_vec per component", false),
+    ov(B::Dv, "Dv_c", Color, &[C], None, "stdlib::dv / dv_vec per component", false),
+    ov(B::Deriv, "Deriv_cf", Color, &[C, F], None, "stdlib::deriv per component", false),
+    ov(B::Du, "Du_p", Vector, &[P], None, "stdlib::du / du_vec per component", false),
+    ov(B::Dv, "Dv_p", Vector, &[P], None, "stdlib::dv / dv_vec per component", false),
+    ov(B::Deriv, "Deriv_pf", Vector, &[P, F], None, "stdlib::deriv per component", false),
+    ov(B::Du, "Du_v", Vector, &[V], None, "stdlib::du / du_vec per component", false),
+    ov(B::Dv, "Dv_v", Vector, &[V], None, "stdlib::dv / dv_vec per component", false),
+    ov(B::Deriv, "Deriv_vf", Vector, &[V, F], None, "stdlib::deriv per component", false),
+    ov(B::Du, "Du_n", Vector, &[N], None, "stdlib::du / du_vec per component", false),
+    ov(B::Dv, "Dv_n", Vector, &[N], None, "stdlib::dv / dv_vec per component", false),
+    ov(B::Deriv, "Deriv_nf", Vector, &[N, F], None, "stdlib::deriv per component", false),
+    ov(B::Noise, "noise_ff", Float, &[F], None, "stdlib::noise (NoiseDomain::D1)", false),
+    ov(B::Noise, "noise_cf", Color, &[F], None, "stdlib::cnoise (NoiseDomain::D1)", false),
+    ov(B::Noise, "noise_pf", Point, &[F], None, "stdlib::vnoise (NoiseDomain::D1)", false),
+    ov(B::Noise, "noise_vf", Vector, &[F], None, "stdlib::vnoise (NoiseDomain::D1)", false),
+    ov(B::Noise, "noise_fff", Float, &[F, F], None, "stdlib::noise (NoiseDomain::D2)", false),
+    ov(B::Noise, "noise_cff", Color, &[F, F], None, "stdlib::cnoise (NoiseDomain::D2)", false),
+    ov(B::Noise, "noise_pff", Point, &[F, F], None, "stdlib::vnoise (NoiseDomain::D2)", false),
+    ov(B::Noise, "noise_vff", Vector, &[F, F], None, "stdlib::vnoise (NoiseDomain::D2)", false),
+    ov(B::Noise, "noise_fp", Float, &[P], None, "stdlib::noise (NoiseDomain::D3)", false),
+    ov(B::Noise, "noise_cp", Color, &[P], None, "stdlib::cnoise (NoiseDomain::D3)", false),
+    ov(B::Noise, "noise_pp", Point, &[P], None, "stdlib::vnoise (NoiseDomain::D3)", false),
+    ov(B::Noise, "noise_vp", Vector, &[P], None, "stdlib::vnoise (NoiseDomain::D3)", false),
+    ov(B::Noise, "noise_fpf", Float, &[P, F], None, "stdlib::noise (NoiseDomain::D4)", false),
+    ov(B::Noise, "noise_cpf", Color, &[P, F], None, "stdlib::cnoise (NoiseDomain::D4)", false),
+    ov(B::Noise, "noise_ppf", Point, &[P, F], None, "stdlib::vnoise (NoiseDomain::D4)", false),
+    ov(B::Noise, "noise_vpf", Vector, &[P, F], None, "stdlib::vnoise (NoiseDomain::D4)", false),
+    ov(B::CellNoise, "cellnoise_ff", Float, &[F], None, "stdlib::cellnoise (NoiseDomain::D1)", false),
+    ov(B::CellNoise, "cellnoise_cf", Color, &[F], None, "stdlib::vcellnoise (NoiseDomain::D1)", false),
+    ov(B::CellNoise, "cellnoise_pf", Point, &[F], None, "stdlib::vcellnoise (NoiseDomain::D1)", false),
+    ov(B::CellNoise, "cellnoise_vf", Vector, &[F], None, "stdlib::vcellnoise (NoiseDomain::D1)", false),
+    ov(B::CellNoise, "cellnoise_fff", Float, &[F, F], None, "stdlib::cellnoise (NoiseDomain::D2)", false),
+    ov(B::CellNoise, "cellnoise_cff", Color, &[F, F], None, "stdlib::vcellnoise (NoiseDomain::D2)", false),
+    ov(B::CellNoise, "cellnoise_pff", Point, &[F, F], None, "stdlib::vcellnoise (NoiseDomain::D2)", false),
+    ov(B::CellNoise, "cellnoise_vff", Vector, &[F, F], None, "stdlib::vcellnoise (NoiseDomain::D2)", false),
+    ov(B::CellNoise, "cellnoise_fp", Float, &[P], None, "stdlib::cellnoise (NoiseDomain::D3)", false),
+    ov(B::CellNoise, "cellnoise_cp", Color, &[P], None, "stdlib::vcellnoise (NoiseDomain::D3)", false),
+    ov(B::CellNoise, "cellnoise_pp", Point, &[P], None, "stdlib::vcellnoise (NoiseDomain::D3)", false),
+    ov(B::CellNoise, "cellnoise_vp", Vector, &[P], None, "stdlib::vcellnoise (NoiseDomain::D3)", false),
+    ov(B::CellNoise, "cellnoise_fpf", Float, &[P, F], None, "stdlib::cellnoise (NoiseDomain::D4)", false),
+    ov(B::CellNoise, "cellnoise_cpf", Color, &[P, F], None, "stdlib::vcellnoise (NoiseDomain::D4)", false),
+    ov(B::CellNoise, "cellnoise_ppf", Point, &[P, F], None, "stdlib::vcellnoise (NoiseDomain::D4)", false),
+    ov(B::CellNoise, "cellnoise_vpf", Vector, &[P, F], None, "stdlib::vcellnoise (NoiseDomain::D4)", false),
+    ov(B::SNoise, "snoise_ff", Float, &[F], None, "stdlib::snoise (NoiseDomain::D1)", false),
+    ov(B::SNoise, "snoise_cf", Color, &[F], None, "stdlib::vsnoise (NoiseDomain::D1)", false),
+    ov(B::SNoise, "snoise_pf", Point, &[F], None, "stdlib::vsnoise (NoiseDomain::D1)", false),
+    ov(B::SNoise, "snoise_vf", Vector, &[F], None, "stdlib::vsnoise (NoiseDomain::D1)", false),
+    ov(B::SNoise, "snoise_fff", Float, &[F, F], None, "stdlib::snoise (NoiseDomain::D2)", false),
+    ov(B::SNoise, "snoise_cff", Color, &[F, F], None, "stdlib::vsnoise (NoiseDomain::D2)", false),
+    ov(B::SNoise, "snoise_pff", Point, &[F, F], None, "stdlib::vsnoise (NoiseDomain::D2)", false),
+    ov(B::SNoise, "snoise_vff", Vector, &[F, F], None, "stdlib::vsnoise (NoiseDomain::D2)", false),
+    ov(B::SNoise, "snoise_fp", Float, &[P], None, "stdlib::snoise (NoiseDomain::D3)", false),
+    ov(B::SNoise, "snoise_cp", Color, &[P], None, "stdlib::vsnoise (NoiseDomain::D3)", false),
+    ov(B::SNoise, "snoise_pp", Point, &[P], None, "stdlib::vsnoise (NoiseDomain::D3)", false),
+    ov(B::SNoise, "snoise_vp", Vector, &[P], None, "stdlib::vsnoise (NoiseDomain::D3)", false),
+    ov(B::SNoise, "snoise_fpf", Float, &[P, F], None, "stdlib::snoise (NoiseDomain::D4)", false),
+    ov(B::SNoise, "snoise_cpf", Color, &[P, F], None, "stdlib::vsnoise (NoiseDomain::D4)", false),
+    ov(B::SNoise, "snoise_ppf", Point, &[P, F], None, "stdlib::vsnoise (NoiseDomain::D4)", false),
+    ov(B::SNoise, "snoise_vpf", Vector, &[P, F], None, "stdlib::vsnoise (NoiseDomain::D4)", false),
+    ov(B::PNoise, "pnoise_fff", Float, &[F, F], None, "stdlib::pnoise (NoiseDomain::D1)", false),
+    ov(B::PNoise, "pnoise_cff", Color, &[F, F], None, "stdlib::vpnoise (NoiseDomain::D1)", false),
+    ov(B::PNoise, "pnoise_pff", Point, &[F, F], None, "stdlib::vpnoise (NoiseDomain::D1)", false),
+    ov(B::PNoise, "pnoise_vff", Vector, &[F, F], None, "stdlib::vpnoise (NoiseDomain::D1)", false),
+    ov(B::PNoise, "pnoise_fffff", Float, &[F, F, F, F], None, "stdlib::pnoise (NoiseDomain::D2)", false),
+    ov(B::PNoise, "pnoise_cffff", Color, &[F, F, F, F], None, "stdlib::vpnoise (NoiseDomain::D2)", false),
+    ov(B::PNoise, "pnoise_pffff", Point, &[F, F, F, F], None, "stdlib::vpnoise (NoiseDomain::D2)", false),
+    ov(B::PNoise, "pnoise_vffff", Vector, &[F, F, F, F], None, "stdlib::vpnoise (NoiseDomain::D2)", false),
+    ov(B::PNoise, "pnoise_fpp", Float, &[P, P], None, "stdlib::pnoise (NoiseDomain::D3)", false),
+    ov(B::PNoise, "pnoise_cpp", Color, &[P, P], None, "stdlib::vpnoise (NoiseDomain::D3)", false),
+    ov(B::PNoise, "pnoise_ppp", Point, &[P, P], None, "stdlib::vpnoise (NoiseDomain::D3)", false),
+    ov(B::PNoise, "pnoise_vpp", Vector, &[P, P], None, "stdlib::vpnoise (NoiseDomain::D3)", false),
+    ov(B::PNoise, "pnoise_fpfpf", Float, &[P, F, P, F], None, "stdlib::pnoise (NoiseDomain::D4)", false),
+    ov(B::PNoise, "pnoise_cpfpf", Color, &[P, F, P, F], None, "stdlib::vpnoise (NoiseDomain::D4)", false),
+    ov(B::PNoise, "pnoise_ppfpf", Point, &[P, F, P, F], None, "stdlib::vpnoise (NoiseDomain::D4)", false),
+    ov(B::PNoise, "pnoise_vpfpf", Vector, &[P, F, P, F], None, "stdlib::vpnoise (NoiseDomain::D4)", false),
+    ov(B::PSNoise, "psnoise_fff", Float, &[F, F], None, "stdlib::psnoise (NoiseDomain::D1)", false),
     ov(
-        "psnoise",
+        B::PSNoise,
+        "psnoise_cff",
+        Color,
+        &[F, F],
+        None,
+        "stdlib::vpnoise, remapped to [-1, 1] (NoiseDomain::D1)",
+        false,
+    ),
+    ov(
+        B::PSNoise,
+        "psnoise_pff",
+        Point,
+        &[F, F],
+        None,
+        "stdlib::vpnoise, remapped to [-1, 1] (NoiseDomain::D1)",
+        false,
+    ),
+    ov(
+        B::PSNoise,
         "psnoise_vff",
         Vector,
         &[F, F],
@@ -409,9 +742,9 @@ pub static OVERLOADS: &[Overload] = &[
         "stdlib::vpnoise, remapped to [-1, 1] (NoiseDomain::D1)",
         false,
     ),
-    ov("psnoise", "psnoise_fffff", Float, &[F, F, F, F], None, "stdlib::psnoise (NoiseDomain::D2)", false),
+    ov(B::PSNoise, "psnoise_fffff", Float, &[F, F, F, F], None, "stdlib::psnoise (NoiseDomain::D2)", false),
     ov(
-        "psnoise",
+        B::PSNoise,
         "psnoise_cffff",
         Color,
         &[F, F, F, F],
@@ -420,7 +753,7 @@ pub static OVERLOADS: &[Overload] = &[
         false,
     ),
     ov(
-        "psnoise",
+        B::PSNoise,
         "psnoise_pffff",
         Point,
         &[F, F, F, F],
@@ -429,7 +762,7 @@ pub static OVERLOADS: &[Overload] = &[
         false,
     ),
     ov(
-        "psnoise",
+        B::PSNoise,
         "psnoise_vffff",
         Vector,
         &[F, F, F, F],
@@ -437,11 +770,27 @@ pub static OVERLOADS: &[Overload] = &[
         "stdlib::vpnoise, remapped to [-1, 1] (NoiseDomain::D2)",
         false,
     ),
-    ov("psnoise", "psnoise_fpp", Float, &[P, P], None, "stdlib::psnoise (NoiseDomain::D3)", false),
-    ov("psnoise", "psnoise_cpp", Color, &[P, P], None, "stdlib::vpnoise, remapped to [-1, 1] (NoiseDomain::D3)", false),
-    ov("psnoise", "psnoise_ppp", Point, &[P, P], None, "stdlib::vpnoise, remapped to [-1, 1] (NoiseDomain::D3)", false),
+    ov(B::PSNoise, "psnoise_fpp", Float, &[P, P], None, "stdlib::psnoise (NoiseDomain::D3)", false),
     ov(
-        "psnoise",
+        B::PSNoise,
+        "psnoise_cpp",
+        Color,
+        &[P, P],
+        None,
+        "stdlib::vpnoise, remapped to [-1, 1] (NoiseDomain::D3)",
+        false,
+    ),
+    ov(
+        B::PSNoise,
+        "psnoise_ppp",
+        Point,
+        &[P, P],
+        None,
+        "stdlib::vpnoise, remapped to [-1, 1] (NoiseDomain::D3)",
+        false,
+    ),
+    ov(
+        B::PSNoise,
         "psnoise_vpp",
         Vector,
         &[P, P],
@@ -449,9 +798,9 @@ pub static OVERLOADS: &[Overload] = &[
         "stdlib::vpnoise, remapped to [-1, 1] (NoiseDomain::D3)",
         false,
     ),
-    ov("psnoise", "psnoise_fpfpf", Float, &[P, F, P, F], None, "stdlib::psnoise (NoiseDomain::D4)", false),
+    ov(B::PSNoise, "psnoise_fpfpf", Float, &[P, F, P, F], None, "stdlib::psnoise (NoiseDomain::D4)", false),
     ov(
-        "psnoise",
+        B::PSNoise,
         "psnoise_cpfpf",
         Color,
         &[P, F, P, F],
@@ -460,7 +809,7 @@ pub static OVERLOADS: &[Overload] = &[
         false,
     ),
     ov(
-        "psnoise",
+        B::PSNoise,
         "psnoise_ppfpf",
         Point,
         &[P, F, P, F],
@@ -469,7 +818,7 @@ pub static OVERLOADS: &[Overload] = &[
         false,
     ),
     ov(
-        "psnoise",
+        B::PSNoise,
         "psnoise_vpfpf",
         Vector,
         &[P, F, P, F],
@@ -477,14 +826,30 @@ pub static OVERLOADS: &[Overload] = &[
         "stdlib::vpnoise, remapped to [-1, 1] (NoiseDomain::D4)",
         false,
     ),
-    ov("random", "random_f", Float, &[], None, "ShadingContext random stream", true),
-    ov("random", "random_c", Color, &[], None, "ShadingContext random stream", true),
-    ov("random", "random_p", Point, &[], None, "ShadingContext random stream", true),
-    ov("random", "random_v", Vector, &[], None, "ShadingContext random stream", true),
-    ov("fbm", "fbm_ffff", Float, &[F, F, F, F], None, "stdlib::fbm (NoiseDomain::D1; octaves rounded, uniform)", false),
-    ov("fbm", "fbm_pfff", Float, &[P, F, F, F], None, "stdlib::fbm (NoiseDomain::D3; octaves rounded, uniform)", false),
+    ov(B::Random, "random_f", Float, &[], None, "ShadingContext random stream", true),
+    ov(B::Random, "random_c", Color, &[], None, "ShadingContext random stream", true),
+    ov(B::Random, "random_p", Point, &[], None, "ShadingContext random stream", true),
+    ov(B::Random, "random_v", Vector, &[], None, "ShadingContext random stream", true),
     ov(
-        "fbm",
+        B::Fbm,
+        "fbm_ffff",
+        Float,
+        &[F, F, F, F],
+        None,
+        "stdlib::fbm (NoiseDomain::D1; octaves rounded, uniform)",
+        false,
+    ),
+    ov(
+        B::Fbm,
+        "fbm_pfff",
+        Float,
+        &[P, F, F, F],
+        None,
+        "stdlib::fbm (NoiseDomain::D3; octaves rounded, uniform)",
+        false,
+    ),
+    ov(
+        B::Fbm,
         "fbm_pffff",
         Float,
         &[P, F, F, F, F],
@@ -493,7 +858,7 @@ pub static OVERLOADS: &[Overload] = &[
         false,
     ),
     ov(
-        "turbulence",
+        B::Turbulence,
         "turbulence_ffff",
         Float,
         &[F, F, F, F],
@@ -502,7 +867,7 @@ pub static OVERLOADS: &[Overload] = &[
         false,
     ),
     ov(
-        "turbulence",
+        B::Turbulence,
         "turbulence_pfff",
         Float,
         &[P, F, F, F],
@@ -511,7 +876,7 @@ pub static OVERLOADS: &[Overload] = &[
         false,
     ),
     ov(
-        "turbulence",
+        B::Turbulence,
         "turbulence_pffff",
         Float,
         &[P, F, F, F, F],
@@ -519,51 +884,51 @@ pub static OVERLOADS: &[Overload] = &[
         "stdlib::turbulence (NoiseDomain::D4; octaves rounded, uniform)",
         false,
     ),
-    ov("xcomp", "xcomp_p", Float, &[P], None, "Vec3::x", false),
-    ov("ycomp", "ycomp_p", Float, &[P], None, "Vec3::y", false),
-    ov("zcomp", "zcomp_p", Float, &[P], None, "Vec3::z", false),
-    ov("xcomp", "xcomp_v", Float, &[V], None, "Vec3::x", false),
-    ov("ycomp", "ycomp_v", Float, &[V], None, "Vec3::y", false),
-    ov("zcomp", "zcomp_v", Float, &[V], None, "Vec3::z", false),
-    ov("xcomp", "xcomp_n", Float, &[N], None, "Vec3::x", false),
-    ov("ycomp", "ycomp_n", Float, &[N], None, "Vec3::y", false),
-    ov("zcomp", "zcomp_n", Float, &[N], None, "Vec3::z", false),
-    ov("setxcomp", "setxcomp_Pf", Void, &[out(Point), F], None, "Vec3::x =", false),
-    ov("setycomp", "setycomp_Pf", Void, &[out(Point), F], None, "Vec3::y =", false),
-    ov("setzcomp", "setzcomp_Pf", Void, &[out(Point), F], None, "Vec3::z =", false),
-    ov("setxcomp", "setxcomp_Vf", Void, &[out(Vector), F], None, "Vec3::x =", false),
-    ov("setycomp", "setycomp_Vf", Void, &[out(Vector), F], None, "Vec3::y =", false),
-    ov("setzcomp", "setzcomp_Vf", Void, &[out(Vector), F], None, "Vec3::z =", false),
-    ov("setxcomp", "setxcomp_Nf", Void, &[out(Normal), F], None, "Vec3::x =", false),
-    ov("setycomp", "setycomp_Nf", Void, &[out(Normal), F], None, "Vec3::y =", false),
-    ov("setzcomp", "setzcomp_Nf", Void, &[out(Normal), F], None, "Vec3::z =", false),
-    ov("comp", "comp_cf", Float, &[C, F], None, "component by index (clamped)", false),
-    ov("setcomp", "setcomp_Cff", Void, &[out(Color), F, F], None, "component by index (clamped) =", false),
-    ov("comp", "comp_pf", Float, &[P, F], None, "component by index (clamped)", false),
-    ov("setcomp", "setcomp_Pff", Void, &[out(Point), F, F], None, "component by index (clamped) =", false),
-    ov("comp", "comp_vf", Float, &[V, F], None, "component by index (clamped)", false),
-    ov("setcomp", "setcomp_Vff", Void, &[out(Vector), F, F], None, "component by index (clamped) =", false),
-    ov("comp", "comp_nf", Float, &[N, F], None, "component by index (clamped)", false),
-    ov("setcomp", "setcomp_Nff", Void, &[out(Normal), F, F], None, "component by index (clamped) =", false),
-    ov("comp", "comp_mff", Float, &[M, F, F], None, "Matrix4 element [row][col]", false),
-    ov("setcomp", "setcomp_Mfff", Void, &[out(Matrix), F, F, F], None, "Matrix4 element [row][col] =", false),
-    ov("length", "length_p", Float, &[P], None, "Vec3::length", false),
-    ov("length", "length_v", Float, &[V], None, "Vec3::length", false),
-    ov("length", "length_n", Float, &[N], None, "Vec3::length", false),
-    ov("normalize", "normalize_v", Vector, &[V], None, "Vec3::normalize", false),
-    ov("normalize", "normalize_p", Vector, &[P], None, "Vec3::normalize", false),
-    ov("normalize", "normalize_n", Normal, &[N], None, "Vec3::normalize", false),
-    ov("distance", "distance_pp", Float, &[P, P], None, "stdlib::distance", false),
-    ov("ptlined", "ptlined_ppp", Float, &[P, P, P], None, "stdlib::ptlined", false),
-    ov("rotate", "rotate_pfpp", Point, &[P, F, P, P], None, "stdlib::rotate", false),
-    ov("area", "area_p", Float, &[P], None, "stdlib::area", false),
-    ov("faceforward", "faceforward_vv", Vector, &[V, V], None, "stdlib::faceforward with Nref = Ng", false),
-    ov("faceforward", "faceforward_vvv", Vector, &[V, V, V], None, "stdlib::faceforward", false),
-    ov("reflect", "reflect_vv", Vector, &[V, V], None, "stdlib::reflect", false),
-    ov("refract", "refract_vvf", Vector, &[V, V, F], None, "stdlib::refract", false),
-    ov("fresnel", "fresnel_vvfFF", Void, &[V, V, F, out(Float), out(Float)], None, "stdlib::fresnel (kr, kt)", false),
+    ov(B::XComp, "xcomp_p", Float, &[P], None, "Vec3::x", false),
+    ov(B::YComp, "ycomp_p", Float, &[P], None, "Vec3::y", false),
+    ov(B::ZComp, "zcomp_p", Float, &[P], None, "Vec3::z", false),
+    ov(B::XComp, "xcomp_v", Float, &[V], None, "Vec3::x", false),
+    ov(B::YComp, "ycomp_v", Float, &[V], None, "Vec3::y", false),
+    ov(B::ZComp, "zcomp_v", Float, &[V], None, "Vec3::z", false),
+    ov(B::XComp, "xcomp_n", Float, &[N], None, "Vec3::x", false),
+    ov(B::YComp, "ycomp_n", Float, &[N], None, "Vec3::y", false),
+    ov(B::ZComp, "zcomp_n", Float, &[N], None, "Vec3::z", false),
+    ov(B::SetXComp, "setxcomp_Pf", Void, &[out(Point), F], None, "Vec3::x =", false),
+    ov(B::SetYComp, "setycomp_Pf", Void, &[out(Point), F], None, "Vec3::y =", false),
+    ov(B::SetZComp, "setzcomp_Pf", Void, &[out(Point), F], None, "Vec3::z =", false),
+    ov(B::SetXComp, "setxcomp_Vf", Void, &[out(Vector), F], None, "Vec3::x =", false),
+    ov(B::SetYComp, "setycomp_Vf", Void, &[out(Vector), F], None, "Vec3::y =", false),
+    ov(B::SetZComp, "setzcomp_Vf", Void, &[out(Vector), F], None, "Vec3::z =", false),
+    ov(B::SetXComp, "setxcomp_Nf", Void, &[out(Normal), F], None, "Vec3::x =", false),
+    ov(B::SetYComp, "setycomp_Nf", Void, &[out(Normal), F], None, "Vec3::y =", false),
+    ov(B::SetZComp, "setzcomp_Nf", Void, &[out(Normal), F], None, "Vec3::z =", false),
+    ov(B::Comp, "comp_cf", Float, &[C, F], None, "component by index (clamped)", false),
+    ov(B::SetComp, "setcomp_Cff", Void, &[out(Color), F, F], None, "component by index (clamped) =", false),
+    ov(B::Comp, "comp_pf", Float, &[P, F], None, "component by index (clamped)", false),
+    ov(B::SetComp, "setcomp_Pff", Void, &[out(Point), F, F], None, "component by index (clamped) =", false),
+    ov(B::Comp, "comp_vf", Float, &[V, F], None, "component by index (clamped)", false),
+    ov(B::SetComp, "setcomp_Vff", Void, &[out(Vector), F, F], None, "component by index (clamped) =", false),
+    ov(B::Comp, "comp_nf", Float, &[N, F], None, "component by index (clamped)", false),
+    ov(B::SetComp, "setcomp_Nff", Void, &[out(Normal), F, F], None, "component by index (clamped) =", false),
+    ov(B::Comp, "comp_mff", Float, &[M, F, F], None, "Matrix4 element [row][col]", false),
+    ov(B::SetComp, "setcomp_Mfff", Void, &[out(Matrix), F, F, F], None, "Matrix4 element [row][col] =", false),
+    ov(B::Length, "length_p", Float, &[P], None, "Vec3::length", false),
+    ov(B::Length, "length_v", Float, &[V], None, "Vec3::length", false),
+    ov(B::Length, "length_n", Float, &[N], None, "Vec3::length", false),
+    ov(B::Normalize, "normalize_v", Vector, &[V], None, "Vec3::normalize", false),
+    ov(B::Normalize, "normalize_p", Vector, &[P], None, "Vec3::normalize", false),
+    ov(B::Normalize, "normalize_n", Normal, &[N], None, "Vec3::normalize", false),
+    ov(B::Distance, "distance_pp", Float, &[P, P], None, "stdlib::distance", false),
+    ov(B::PtLineD, "ptlined_ppp", Float, &[P, P, P], None, "stdlib::ptlined", false),
+    ov(B::Rotate, "rotate_pfpp", Point, &[P, F, P, P], None, "stdlib::rotate", false),
+    ov(B::Area, "area_p", Float, &[P], None, "stdlib::area", false),
+    ov(B::FaceForward, "faceforward_vv", Vector, &[V, V], None, "stdlib::faceforward with Nref = Ng", false),
+    ov(B::FaceForward, "faceforward_vvv", Vector, &[V, V, V], None, "stdlib::faceforward", false),
+    ov(B::Reflect, "reflect_vv", Vector, &[V, V], None, "stdlib::reflect", false),
+    ov(B::Refract, "refract_vvf", Vector, &[V, V, F], None, "stdlib::refract", false),
+    ov(B::Fresnel, "fresnel_vvfFF", Void, &[V, V, F, out(Float), out(Float)], None, "stdlib::fresnel (kr, kt)", false),
     ov(
-        "fresnel",
+        B::Fresnel,
         "fresnel_vvfFFVV",
         Void,
         &[V, V, F, out(Float), out(Float), out(Vector), out(Vector)],
@@ -572,7 +937,7 @@ pub static OVERLOADS: &[Overload] = &[
         false,
     ),
     ov(
-        "transform",
+        B::Transform,
         "transform_sp",
         Point,
         &[S, P],
@@ -581,7 +946,7 @@ pub static OVERLOADS: &[Overload] = &[
         false,
     ),
     ov(
-        "transform",
+        B::Transform,
         "transform_ssp",
         Point,
         &[S, S, P],
@@ -589,9 +954,9 @@ pub static OVERLOADS: &[Overload] = &[
         "ShadingContext space matrices, Matrix4::transform_point",
         false,
     ),
-    ov("transform", "transform_mp", Point, &[M, P], None, "Matrix4::transform_point", false),
+    ov(B::Transform, "transform_mp", Point, &[M, P], None, "Matrix4::transform_point", false),
     ov(
-        "transform",
+        B::Transform,
         "transform_smp",
         Point,
         &[S, M, P],
@@ -600,7 +965,7 @@ pub static OVERLOADS: &[Overload] = &[
         false,
     ),
     ov(
-        "vtransform",
+        B::VTransform,
         "vtransform_sv",
         Vector,
         &[S, V],
@@ -609,7 +974,7 @@ pub static OVERLOADS: &[Overload] = &[
         false,
     ),
     ov(
-        "vtransform",
+        B::VTransform,
         "vtransform_ssv",
         Vector,
         &[S, S, V],
@@ -617,9 +982,9 @@ pub static OVERLOADS: &[Overload] = &[
         "ShadingContext space matrices, Matrix4::transform_vector",
         false,
     ),
-    ov("vtransform", "vtransform_mv", Vector, &[M, V], None, "Matrix4::transform_vector", false),
+    ov(B::VTransform, "vtransform_mv", Vector, &[M, V], None, "Matrix4::transform_vector", false),
     ov(
-        "vtransform",
+        B::VTransform,
         "vtransform_smv",
         Vector,
         &[S, M, V],
@@ -628,7 +993,7 @@ pub static OVERLOADS: &[Overload] = &[
         false,
     ),
     ov(
-        "ntransform",
+        B::NTransform,
         "ntransform_sn",
         Normal,
         &[S, N],
@@ -637,7 +1002,7 @@ pub static OVERLOADS: &[Overload] = &[
         false,
     ),
     ov(
-        "ntransform",
+        B::NTransform,
         "ntransform_ssn",
         Normal,
         &[S, S, N],
@@ -645,9 +1010,9 @@ pub static OVERLOADS: &[Overload] = &[
         "ShadingContext space matrices, Matrix4::transform_normal",
         false,
     ),
-    ov("ntransform", "ntransform_mn", Normal, &[M, N], None, "Matrix4::transform_normal", false),
+    ov(B::NTransform, "ntransform_mn", Normal, &[M, N], None, "Matrix4::transform_normal", false),
     ov(
-        "ntransform",
+        B::NTransform,
         "ntransform_smn",
         Normal,
         &[S, M, N],
@@ -656,7 +1021,7 @@ pub static OVERLOADS: &[Overload] = &[
         false,
     ),
     ov(
-        "transform",
+        B::Transform,
         "transform_sv",
         Vector,
         &[S, V],
@@ -665,7 +1030,7 @@ pub static OVERLOADS: &[Overload] = &[
         false,
     ),
     ov(
-        "transform",
+        B::Transform,
         "transform_ssv",
         Vector,
         &[S, S, V],
@@ -673,9 +1038,9 @@ pub static OVERLOADS: &[Overload] = &[
         "ShadingContext space matrices, Matrix4::transform_vector",
         false,
     ),
-    ov("transform", "transform_mv", Vector, &[M, V], None, "Matrix4::transform_vector", false),
+    ov(B::Transform, "transform_mv", Vector, &[M, V], None, "Matrix4::transform_vector", false),
     ov(
-        "transform",
+        B::Transform,
         "transform_smv",
         Vector,
         &[S, M, V],
@@ -684,7 +1049,7 @@ pub static OVERLOADS: &[Overload] = &[
         false,
     ),
     ov(
-        "transform",
+        B::Transform,
         "transform_sn",
         Normal,
         &[S, N],
@@ -693,7 +1058,7 @@ pub static OVERLOADS: &[Overload] = &[
         false,
     ),
     ov(
-        "transform",
+        B::Transform,
         "transform_ssn",
         Normal,
         &[S, S, N],
@@ -701,9 +1066,9 @@ pub static OVERLOADS: &[Overload] = &[
         "ShadingContext space matrices, Matrix4::transform_normal",
         false,
     ),
-    ov("transform", "transform_mn", Normal, &[M, N], None, "Matrix4::transform_normal", false),
+    ov(B::Transform, "transform_mn", Normal, &[M, N], None, "Matrix4::transform_normal", false),
     ov(
-        "transform",
+        B::Transform,
         "transform_smn",
         Normal,
         &[S, M, N],
@@ -711,26 +1076,34 @@ pub static OVERLOADS: &[Overload] = &[
         "ShadingContext space matrix, Matrix4::transform_normal",
         false,
     ),
-    ov("depth", "depth_p", Float, &[P], None, "ShadingContext camera depth (normalized by the clipping planes)", false),
-    ov("calculatenormal", "calculatenormal_p", Normal, &[P], None, "stdlib::calculatenormal", false),
-    ov("ctransform", "ctransform_sc", Color, &[S, C], None, "stdlib::from_rgb", false),
-    ov("ctransform", "ctransform_ssc", Color, &[S, S, C], None, "stdlib::ctransform", false),
-    ov("determinant", "determinant_m", Float, &[M], None, "Matrix4::determinant", false),
-    ov("translate", "translate_mv", Matrix, &[M, V], None, "Matrix4::translate", false),
-    ov("rotate", "rotate_mfv", Matrix, &[M, F, V], None, "Matrix4::rotate", false),
-    ov("scale", "scale_mp", Matrix, &[M, P], None, "Matrix4::scale", false),
-    ov("concat", "concat_s_ss", String, &[S], Some(Variadic::Repeat(String)), "String concatenation (uniform)", false),
-    ov("printf", "printf_s_etc", Void, &[S], Some(Variadic::Any), "formatted print (side effect)", false),
-    ov("format", "format_s_etc", String, &[S], Some(Variadic::Any), "formatted string", false),
-    ov("match", "match_ss", Float, &[S, S], None, "regex match", false),
-    ov("ambient", "ambient", Color, &[], None, "stdlib::ambient", true),
-    ov("diffuse", "diffuse_n", Color, &[N], None, "stdlib::diffuse", true),
-    ov("specular", "specular_nvf", Color, &[N, V, F], None, "stdlib::specular", true),
-    ov("specularbrdf", "specularbrdf_vnvf", Color, &[V, N, V, F], None, "stdlib::specularbrdf (times Cl)", true),
-    ov("phong", "phong_nvf", Color, &[N, V, F], None, "stdlib::phong", true),
-    ov("trace", "trace_pv", Color, &[P, V], None, "ShadingContext::trace", true),
     ov(
-        "texture",
+        B::Depth,
+        "depth_p",
+        Float,
+        &[P],
+        None,
+        "ShadingContext camera depth (normalized by the clipping planes)",
+        false,
+    ),
+    ov(B::CalculateNormal, "calculatenormal_p", Normal, &[P], None, "stdlib::calculatenormal", false),
+    ov(B::CTransform, "ctransform_sc", Color, &[S, C], None, "stdlib::from_rgb", false),
+    ov(B::CTransform, "ctransform_ssc", Color, &[S, S, C], None, "stdlib::ctransform", false),
+    ov(B::Determinant, "determinant_m", Float, &[M], None, "Matrix4::determinant", false),
+    ov(B::Translate, "translate_mv", Matrix, &[M, V], None, "Matrix4::translate", false),
+    ov(B::Rotate, "rotate_mfv", Matrix, &[M, F, V], None, "Matrix4::rotate", false),
+    ov(B::Scale, "scale_mp", Matrix, &[M, P], None, "Matrix4::scale", false),
+    ov(B::Concat, "concat_s_ss", String, &[S], Some(Variadic::Repeat(String)), "String concatenation (uniform)", false),
+    ov(B::Printf, "printf_s_etc", Void, &[S], Some(Variadic::Any), "formatted print (side effect)", false),
+    ov(B::Format, "format_s_etc", String, &[S], Some(Variadic::Any), "formatted string", false),
+    ov(B::Match, "match_ss", Float, &[S, S], None, "regex match", false),
+    ov(B::Ambient, "ambient", Color, &[], None, "stdlib::ambient", true),
+    ov(B::Diffuse, "diffuse_n", Color, &[N], None, "stdlib::diffuse", true),
+    ov(B::Specular, "specular_nvf", Color, &[N, V, F], None, "stdlib::specular", true),
+    ov(B::SpecularBrdf, "specularbrdf_vnvf", Color, &[V, N, V, F], None, "stdlib::specularbrdf (times Cl)", true),
+    ov(B::Phong, "phong_nvf", Color, &[N, V, F], None, "stdlib::phong", true),
+    ov(B::Trace, "trace_pv", Color, &[P, V], None, "ShadingContext::trace", true),
+    ov(
+        B::Texture,
         "texture_fs_opt",
         Float,
         &[S],
@@ -739,7 +1112,7 @@ pub static OVERLOADS: &[Overload] = &[
         true,
     ),
     ov(
-        "texture",
+        B::Texture,
         "texture_fsff_opt",
         Float,
         &[S, F, F],
@@ -748,7 +1121,7 @@ pub static OVERLOADS: &[Overload] = &[
         true,
     ),
     ov(
-        "texture",
+        B::Texture,
         "texture_fsffffffff_opt",
         Float,
         &[S, F, F, F, F, F, F, F, F],
@@ -757,7 +1130,7 @@ pub static OVERLOADS: &[Overload] = &[
         true,
     ),
     ov(
-        "environment",
+        B::Environment,
         "environment_fsv_opt",
         Float,
         &[S, V],
@@ -766,7 +1139,7 @@ pub static OVERLOADS: &[Overload] = &[
         true,
     ),
     ov(
-        "environment",
+        B::Environment,
         "environment_fsvvvv_opt",
         Float,
         &[S, V, V, V, V],
@@ -774,9 +1147,9 @@ pub static OVERLOADS: &[Overload] = &[
         "ShadingContext::trace (environment as a ray)",
         true,
     ),
-    ov("shadow", "shadow_fsp_opt", Float, &[S, P], Some(Variadic::NameValue), "ShadingContext shadow ray", true),
+    ov(B::Shadow, "shadow_fsp_opt", Float, &[S, P], Some(Variadic::NameValue), "ShadingContext shadow ray", true),
     ov(
-        "shadow",
+        B::Shadow,
         "shadow_fspppp_opt",
         Float,
         &[S, P, P, P, P],
@@ -785,7 +1158,7 @@ pub static OVERLOADS: &[Overload] = &[
         true,
     ),
     ov(
-        "texture",
+        B::Texture,
         "texture_cs_opt",
         Color,
         &[S],
@@ -794,7 +1167,7 @@ pub static OVERLOADS: &[Overload] = &[
         true,
     ),
     ov(
-        "texture",
+        B::Texture,
         "texture_csff_opt",
         Color,
         &[S, F, F],
@@ -803,7 +1176,7 @@ pub static OVERLOADS: &[Overload] = &[
         true,
     ),
     ov(
-        "texture",
+        B::Texture,
         "texture_csffffffff_opt",
         Color,
         &[S, F, F, F, F, F, F, F, F],
@@ -812,7 +1185,7 @@ pub static OVERLOADS: &[Overload] = &[
         true,
     ),
     ov(
-        "environment",
+        B::Environment,
         "environment_csv_opt",
         Color,
         &[S, V],
@@ -821,7 +1194,7 @@ pub static OVERLOADS: &[Overload] = &[
         true,
     ),
     ov(
-        "environment",
+        B::Environment,
         "environment_csvvvv_opt",
         Color,
         &[S, V, V, V, V],
@@ -829,9 +1202,9 @@ pub static OVERLOADS: &[Overload] = &[
         "ShadingContext::trace (environment as a ray)",
         true,
     ),
-    ov("shadow", "shadow_csp_opt", Color, &[S, P], Some(Variadic::NameValue), "ShadingContext shadow ray", true),
+    ov(B::Shadow, "shadow_csp_opt", Color, &[S, P], Some(Variadic::NameValue), "ShadingContext shadow ray", true),
     ov(
-        "shadow",
+        B::Shadow,
         "shadow_cspppp_opt",
         Color,
         &[S, P, P, P, P],
@@ -839,9 +1212,9 @@ pub static OVERLOADS: &[Overload] = &[
         "ShadingContext shadow ray",
         true,
     ),
-    ov("textureinfo", "textureinfo_ssX", Float, &[S, S, OUT_ANY], None, "texture metadata", false),
+    ov(B::TextureInfo, "textureinfo_ssX", Float, &[S, S, OUT_ANY], None, "texture metadata", false),
     ov(
-        "atmosphere",
+        B::Atmosphere,
         "atmosphere_sX",
         Float,
         &[S, OUT_ANY],
@@ -850,7 +1223,7 @@ pub static OVERLOADS: &[Overload] = &[
         false,
     ),
     ov(
-        "displacement",
+        B::Displacement,
         "displacement_sX",
         Float,
         &[S, OUT_ANY],
@@ -859,7 +1232,7 @@ pub static OVERLOADS: &[Overload] = &[
         false,
     ),
     ov(
-        "lightsource",
+        B::LightSource,
         "lightsource_sX",
         Float,
         &[S, OUT_ANY],
@@ -868,7 +1241,7 @@ pub static OVERLOADS: &[Overload] = &[
         false,
     ),
     ov(
-        "surface",
+        B::Surface,
         "surface_sX",
         Float,
         &[S, OUT_ANY],
@@ -877,7 +1250,7 @@ pub static OVERLOADS: &[Overload] = &[
         false,
     ),
     ov(
-        "incident",
+        B::Incident,
         "incident_sX",
         Float,
         &[S, OUT_ANY],
@@ -886,7 +1259,7 @@ pub static OVERLOADS: &[Overload] = &[
         false,
     ),
     ov(
-        "opposite",
+        B::Opposite,
         "opposite_sX",
         Float,
         &[S, OUT_ANY],
@@ -895,7 +1268,7 @@ pub static OVERLOADS: &[Overload] = &[
         false,
     ),
     ov(
-        "attribute",
+        B::Attribute,
         "attribute_sX",
         Float,
         &[S, OUT_ANY],
@@ -904,7 +1277,7 @@ pub static OVERLOADS: &[Overload] = &[
         false,
     ),
     ov(
-        "option",
+        B::Option,
         "option_sX",
         Float,
         &[S, OUT_ANY],
@@ -913,7 +1286,7 @@ pub static OVERLOADS: &[Overload] = &[
         false,
     ),
     ov(
-        "rendererinfo",
+        B::RendererInfo,
         "rendererinfo_sX",
         Float,
         &[S, OUT_ANY],
@@ -922,7 +1295,7 @@ pub static OVERLOADS: &[Overload] = &[
         false,
     ),
     ov(
-        "rayinfo",
+        B::RayInfo,
         "rayinfo_sX",
         Float,
         &[S, OUT_ANY],
@@ -930,11 +1303,11 @@ pub static OVERLOADS: &[Overload] = &[
         "ray query (returns 1 when known; a camera ray at depth 0 outside a ray tracer)",
         false,
     ),
-    ov("raylevel", "raylevel", Float, &[], None, "ray depth (BMRT): 0 for camera rays", false),
-    ov("isshadowray", "isshadowray", Float, &[], None, "1 for shadow rays (BMRT): 0", false),
-    ov("isindirectray", "isindirectray", Float, &[], None, "1 for indirect rays (BMRT): 0", false),
+    ov(B::RayLevel, "raylevel", Float, &[], None, "ray depth (BMRT): 0 for camera rays", false),
+    ov(B::IsShadowRay, "isshadowray", Float, &[], None, "1 for shadow rays (BMRT): 0", false),
+    ov(B::IsIndirectRay, "isindirectray", Float, &[], None, "1 for indirect rays (BMRT): 0", false),
     ov(
-        "occlusion",
+        B::Occlusion,
         "occlusion_pnf_opt",
         Float,
         &[P, N, F],
@@ -943,7 +1316,7 @@ pub static OVERLOADS: &[Overload] = &[
         true,
     ),
     ov(
-        "occlusion",
+        B::Occlusion,
         "occlusion_spnf_opt",
         Float,
         &[S, P, N, F],
@@ -952,7 +1325,7 @@ pub static OVERLOADS: &[Overload] = &[
         true,
     ),
     ov(
-        "indirectdiffuse",
+        B::IndirectDiffuse,
         "indirectdiffuse_pnf_opt",
         Color,
         &[P, N, F],
@@ -960,9 +1333,9 @@ pub static OVERLOADS: &[Overload] = &[
         "indirect diffuse light (PRMan 11+): black outside a scene",
         true,
     ),
-    ov("caustic", "caustic_pn", Color, &[P, N], None, "caustic light from photon maps (PRMan): black", true),
+    ov(B::Caustic, "caustic_pn", Color, &[P, N], None, "caustic light from photon maps (PRMan): black", true),
     ov(
-        "transmission",
+        B::Transmission,
         "transmission_pp_opt",
         Color,
         &[P, P],
@@ -970,11 +1343,11 @@ pub static OVERLOADS: &[Overload] = &[
         "transmission between two points (PRMan 11+): white, nothing blocks outside a scene",
         true,
     ),
-    ov("shadername", "shadername", String, &[], None, "the shader name", false),
-    ov("shadername", "shadername_s", String, &[S], None, "the name of the shader bound to a slot", false),
-    ov("filterwidth", "filterwidth_f", Float, &[F], None, "stdlib::filterwidth", false),
-    ov("filterwidth", "filterwidth_p", Float, &[P], None, "stdlib::filterwidth_point", false),
-    ov("filteredpulse", "filteredpulse_fff", Float, &[F, F, F], None, "stdlib::filteredpulse", false),
+    ov(B::ShaderName, "shadername", String, &[], None, "the shader name", false),
+    ov(B::ShaderName, "shadername_s", String, &[S], None, "the name of the shader bound to a slot", false),
+    ov(B::FilterWidth, "filterwidth_f", Float, &[F], None, "stdlib::filterwidth", false),
+    ov(B::FilterWidth, "filterwidth_p", Float, &[P], None, "stdlib::filterwidth_point", false),
+    ov(B::FilteredPulse, "filteredpulse_fff", Float, &[F, F, F], None, "stdlib::filteredpulse", false),
 ];
 
 /// Why [`resolve`] found no overload.
@@ -992,12 +1365,13 @@ pub enum ResolveError {
 /// True when some built-in is called `name`.
 #[must_use]
 pub fn exists(name: &str) -> bool {
-    OVERLOADS.iter().any(|o| o.name == name)
+    Builtin::from_name(name).is_some()
 }
 
 /// The overloads of `name`, as indices into [`OVERLOADS`].
 pub fn overloads_of(name: &str) -> impl Iterator<Item = u32> + '_ {
-    OVERLOADS.iter().enumerate().filter(move |(_, o)| o.name == name).map(|(i, _)| i as u32)
+    let b = Builtin::from_name(name);
+    OVERLOADS.iter().enumerate().filter(move |(_, o)| Some(o.builtin) == b).map(|(i, _)| i as u32)
 }
 
 /// The overload with key `key`.
@@ -1007,6 +1381,12 @@ pub fn by_key(key: &str) -> Option<u32> {
 }
 
 impl Overload {
+    /// The RSL name.
+    #[must_use]
+    pub const fn name(&self) -> &'static str {
+        self.builtin.name()
+    }
+
     /// True when `n` arguments fit the fixed parameters and the variadic tail.
     #[must_use]
     pub fn accepts_count(&self, n: usize) -> bool {
@@ -1050,7 +1430,7 @@ impl Overload {
             Some(Variadic::Any) => args.push("…".into()),
             None => {}
         }
-        format!("{} {}({})", self.ret, self.name, args.join(", "))
+        format!("{} {}({})", self.ret, self.builtin.name(), args.join(", "))
     }
 }
 
@@ -1151,6 +1531,16 @@ pub fn resolve_expecting(name: &str, args: &[Type], expected: Option<BaseType>) 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn every_builtin_has_overloads_and_its_name() {
+        for &b in Builtin::ALL {
+            assert!(b.overloads().next().is_some(), "{b} has no overload");
+            assert_eq!(Builtin::from_name(b.name()), Some(b));
+        }
+        assert!(OVERLOADS.iter().all(|o| Builtin::ALL.contains(&o.builtin)));
+        assert_eq!(Builtin::from_name("nosuch"), None);
+    }
 
     #[test]
     fn keys_are_unique() {

@@ -137,7 +137,11 @@ fn result_type(decls: &str, expr: &str) -> String {
     let src2 = format!("surface t() {{ {decls} if (1) {{ }} printf(\"\", {expr}); }}");
     let m2 = ok(&src2);
     // The printf argument is the instruction before the call.
-    let call = m2.func.insts.iter().rposition(|i| matches!(&i.op, Op::Call { name, .. } if name == "printf"));
+    let call = m2
+        .func
+        .insts
+        .iter()
+        .rposition(|i| matches!(&i.op, Op::Call { builtin: anysl_rsl::builtins::Builtin::Printf, .. }));
     let arg = call.and_then(|c| m2.func.insts[c].args.get(1).copied()).expect("printf argument");
     m2.func.inst(arg).ty.to_string()
 }

@@ -28,7 +28,7 @@
 //!   point-like default in a named space keeps the space in [`ParamMeta::space`]; a colour in a
 //!   named colour space is converted to RGB at compile time.
 
-use crate::builtins::{self, ArgSpec, Overload, ResolveError, OVERLOADS};
+use crate::builtins::{self, ArgSpec, Builtin, Overload, ResolveError, OVERLOADS};
 use crate::diag::{codes, Diagnostic, Diagnostics};
 use crate::front::ast::{self, AssignOp, BinaryOp, Expr, ExprKind, ShaderType, Stmt, StmtKind, UnaryOp};
 use crate::ir::{
@@ -1820,7 +1820,7 @@ impl<'a, 'd> Lowerer<'a, 'd> {
             let d = b.ty.detail.join(i.ty.detail);
             let b = self.convert(b, OVERLOADS[k as usize].params[0].ty, base.span)?;
             return Some(self.inst(
-                Op::Call { name: "comp".into(), overload: k, outputs: vec![None, None] },
+                Op::Call { builtin: Builtin::Comp, overload: k, outputs: vec![None, None] },
                 vec![b.v, i.v],
                 Type::new(BaseType::Float, d),
                 false,
@@ -1930,7 +1930,7 @@ impl<'a, 'd> Lowerer<'a, 'd> {
             let mut d =
                 Diagnostic::error(codes::UNKNOWN_FUNCTION, name.span, format!("unknown function `{}`", name.name))
                     .with_label("not defined");
-            let mut names: Vec<&str> = OVERLOADS.iter().map(|o| o.name).collect();
+            let mut names: Vec<&str> = OVERLOADS.iter().map(|o| o.name()).collect();
             names.dedup();
             let user_names: Vec<String> = self.scopes.iter().flat_map(|s| s.funcs.keys().cloned()).collect();
             if let Some(s) = suggest(&name.name, names.into_iter().chain(user_names.iter().map(String::as_str))) {
@@ -2047,7 +2047,7 @@ impl<'a, 'd> Lowerer<'a, 'd> {
         let o: &'static Overload = &OVERLOADS[k as usize];
         let mut inputs = Vec::new();
         let mut outputs = Vec::new();
-        let uniform_random = o.name == "random" && self.uniform_target;
+        let uniform_random = o.builtin == Builtin::Random && self.uniform_target;
         let mut detail = if o.always_varying && !uniform_random { Detail::Varying } else { Detail::Uniform };
         let mut copy_out = Vec::new();
         for (i, a) in vals.into_iter().enumerate() {
@@ -2077,7 +2077,7 @@ impl<'a, 'd> Lowerer<'a, 'd> {
         }
         let ty = Type::new(o.ret, detail);
         let out_detail = detail.join(if self.flow() > 0 { Detail::Varying } else { Detail::Uniform });
-        let r = self.inst(Op::Call { name: name.name.clone(), overload: k, outputs }, inputs, ty, false, e.span);
+        let r = self.inst(Op::Call { builtin: o.builtin, overload: k, outputs }, inputs, ty, false, e.span);
         for (t, pl, span) in copy_out {
             if pl.ty.detail == Detail::Uniform && out_detail == Detail::Varying && detail == Detail::Varying {
                 let n = self.slot_name(pl.slot);

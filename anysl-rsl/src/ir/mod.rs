@@ -24,6 +24,7 @@
 pub mod cfg;
 pub mod print;
 
+use crate::builtins::Builtin;
 use crate::span::Span;
 use crate::types::{BaseType, Detail, Type};
 
@@ -279,11 +280,11 @@ pub enum Op {
     /// a colour *from* the named colour space to RGB: the semantics of `point "world" (…)` and
     /// `color "hsv" (…)`.
     FromSpace,
-    /// A built-in function: `name` resolved to overload `overload` of [`crate::builtins`];
-    /// output arguments are slots in `outputs`, written by the call.
+    /// A built-in function: `builtin`, resolved to overload `overload` of
+    /// [`crate::builtins::OVERLOADS`]; output arguments are slots in `outputs`, written by the call.
     Call {
-        /// The built-in's name.
-        name: String,
+        /// The built-in.
+        builtin: Builtin,
         /// Index of the overload in the built-in table.
         overload: u32,
         /// One entry per source argument, in argument order: the slot an `output` argument
@@ -486,9 +487,8 @@ impl Module {
         let f = &self.func;
         f.insts.iter().any(|i| match &i.op {
             Op::FromSpace => i.ty.base != BaseType::Color,
-            Op::Call { name, .. } => {
-                matches!(name.as_str(), "transform" | "vtransform" | "ntransform")
-                    && i.args.iter().any(|a| f.inst(*a).ty.base == BaseType::String)
+            Op::Call { builtin, .. } => {
+                builtin.names_space() && i.args.iter().any(|a| f.inst(*a).ty.base == BaseType::String)
             }
             _ => false,
         })
@@ -620,7 +620,7 @@ impl Op {
     #[must_use]
     pub fn is_removable(&self) -> bool {
         match self {
-            Op::Call { name, outputs, .. } => outputs.iter().all(Option::is_none) && name != "printf",
+            Op::Call { builtin, outputs, .. } => outputs.iter().all(Option::is_none) && !builtin.has_side_effect(),
             _ => true,
         }
     }
@@ -630,54 +630,9 @@ impl Op {
     #[must_use]
     pub fn is_pure(&self) -> bool {
         match self {
-            Op::Call { name, outputs, .. } => {
-                outputs.iter().all(Option::is_none) && !CONTEXT_BUILTINS.contains(&name.as_str())
-            }
+            Op::Call { builtin, outputs, .. } => outputs.iter().all(Option::is_none) && !builtin.reads_context(),
             Op::Load(_) | Op::LoadElem(_) => false,
             _ => true,
         }
     }
 }
-
-/// Built-ins whose result depends on more than their arguments (the renderer, the lights, the
-/// derivatives of the arguments, a random stream, or a side effect): never folded.
-pub const CONTEXT_BUILTINS: &[&str] = &[
-    "printf",
-    "random",
-    "trace",
-    "texture",
-    "environment",
-    "shadow",
-    "ambient",
-    "diffuse",
-    "specular",
-    "specularbrdf",
-    "phong",
-    "atmosphere",
-    "displacement",
-    "lightsource",
-    "surface",
-    "incident",
-    "opposite",
-    "attribute",
-    "option",
-    "rendererinfo",
-    "textureinfo",
-    "depth",
-    "Du",
-    "Dv",
-    "Deriv",
-    "area",
-    "calculatenormal",
-    "filterwidth",
-    "filterstep",
-    "shadername",
-    "transform",
-    "vtransform",
-    "ntransform",
-    "ctransform",
-];
-
-/// Built-ins that need the derivatives of (some of) their arguments.
-pub const DERIVATIVE_BUILTINS: &[&str] =
-    &["Du", "Dv", "Deriv", "area", "calculatenormal", "filterwidth", "filterstep", "texture", "environment", "shadow"];

@@ -142,8 +142,8 @@ impl Function {
             Op::MakeTriple => format!("triple({})", args(false)),
             Op::MakeMatrix => format!("matrix({})", args(false)),
             Op::FromSpace => format!("fromspace({})", args(false)),
-            Op::Call { name, overload, outputs } => {
-                let key = OVERLOADS.get(*overload as usize).map_or(name.as_str(), |o| o.key);
+            Op::Call { builtin, overload, outputs } => {
+                let key = OVERLOADS.get(*overload as usize).map_or(builtin.name(), |o| o.key);
                 let mut ins = inst.args.iter();
                 let mut parts = Vec::new();
                 for o in outputs {

@@ -1,38 +1,7 @@
 //! Uniform/varying analysis and derivative-activity analysis.
 
-use crate::ir::{walk, Block, Function, Node, Op, SlotKind, DERIVATIVE_BUILTINS};
+use crate::ir::{walk, Block, Function, Node, Op, SlotKind};
 use crate::types::Detail;
-
-/// Built-ins whose result differs between shading points even for uniform arguments.
-const VARYING_BUILTINS: &[&str] = &[
-    "random",
-    "ambient",
-    "diffuse",
-    "specular",
-    "specularbrdf",
-    "phong",
-    "trace",
-    "environment",
-    "shadow",
-    "texture",
-    "depth",
-    "incident",
-    "opposite",
-    "lightsource",
-    "surface",
-    "displacement",
-    "atmosphere",
-    "calculatenormal",
-    "Du",
-    "Dv",
-    "Deriv",
-    "area",
-    "filterwidth",
-    "filterstep",
-    "transform",
-    "vtransform",
-    "ntransform",
-];
 
 /// Sets the detail of every instruction and slot: `uniform` when the value is provably the
 /// same for every shading point, else `varying`. A local assigned under varying control flow
@@ -107,8 +76,8 @@ fn visit(
                 let mut var = inst.args.iter().any(|a| inst_var[a.0 as usize]);
                 match &inst.op {
                     Op::Load(s) | Op::LoadElem(s) => var |= slot_var[s.0 as usize],
-                    Op::Call { name, outputs, .. } => {
-                        var |= VARYING_BUILTINS.contains(&name.as_str());
+                    Op::Call { builtin, outputs, .. } => {
+                        var |= builtin.varies_per_point();
                         for s in outputs.iter().flatten() {
                             let mut f = slot_var[s.0 as usize];
                             raise(&mut f, var || varying_flow, changed);
@@ -169,8 +138,8 @@ pub fn analyze_derivatives(func: &mut Function) -> bool {
     // Seeds.
     walk(&func.body, &mut |node| {
         if let Node::Inst(v) = node {
-            if let Op::Call { name, .. } = &func.inst(*v).op {
-                if DERIVATIVE_BUILTINS.contains(&name.as_str()) {
+            if let Op::Call { builtin, .. } = &func.inst(*v).op {
+                if builtin.uses_derivatives() {
                     for &a in &func.inst(*v).args {
                         need[a.0 as usize] = true;
                     }
@@ -246,8 +215,6 @@ pub fn analyze_derivatives(func: &mut Function) -> bool {
 /// the light loops use `P`, two-argument `faceforward` uses `Ng`, `depth` and `random` use
 /// `P`; the derivative and texture built-ins use the parametric frame and footprint, so they
 /// count as reading every global.
-const CONTEXT_P_BUILTINS: &[&str] = &["ambient", "diffuse", "specular", "phong", "random", "depth"];
-const CONTEXT_ALL_BUILTINS: &[&str] = &["Du", "Dv", "Deriv", "calculatenormal", "texture", "environment", "shadow"];
 
 /// The member of [`anysl_core::GlobalSet`] a global is read through (`Oi` starts as `Os`);
 /// empty for the outputs and the light-loop globals, which the renderer does not supply.
@@ -294,14 +261,8 @@ pub fn globals_read(module: &crate::ir::Module) -> anysl_core::GlobalSet {
     }
     walk(&func.body, &mut |node| {
         if let Node::Inst(v) = node {
-            if let Op::Call { name, .. } = &func.inst(*v).op {
-                if CONTEXT_ALL_BUILTINS.contains(&name.as_str()) {
-                    read = S::ALL;
-                } else if CONTEXT_P_BUILTINS.contains(&name.as_str()) {
-                    read |= S::P;
-                } else if name == "faceforward" && func.inst(*v).args.len() == 2 {
-                    read |= S::NG;
-                }
+            if let Op::Call { builtin, .. } = &func.inst(*v).op {
+                read |= builtin.globals_read(func.inst(*v).args.len());
             }
         }
     });

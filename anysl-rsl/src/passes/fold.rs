@@ -1,5 +1,6 @@
 //! Parameter specialization and constant folding.
 
+use crate::builtins::Builtin;
 use crate::ir::{BinOp, Block, Const, Function, Inst, Module, Node, Op, SlotKind, UnOp, Value};
 use crate::types::{BaseType, Detail};
 
@@ -286,13 +287,13 @@ fn eval(inst: &Inst, args: &[Const]) -> Option<Const> {
             let v: Option<Vec<f64>> = args.iter().map(|c| comps(c).map(|v| v[0])).collect();
             from_comps(base, &v?)
         }
-        Op::Call { name, .. } => eval_builtin(name, base, args),
+        Op::Call { builtin, .. } => eval_builtin(*builtin, base, args),
         _ => None,
     }
 }
 
 /// The pure math built-ins folded at compile time, on floats and component-wise on triples.
-fn eval_builtin(name: &str, base: BaseType, args: &[Const]) -> Option<Const> {
+fn eval_builtin(builtin: Builtin, base: BaseType, args: &[Const]) -> Option<Const> {
     let a: Option<Vec<Vec<f64>>> = args.iter().map(comps).collect();
     let a = a?;
     let f1 = |f: fn(f64) -> f64| -> Option<Const> {
@@ -302,26 +303,26 @@ fn eval_builtin(name: &str, base: BaseType, args: &[Const]) -> Option<Const> {
         from_comps(base, &a[0].iter().map(|&x| f(x)).collect::<Vec<_>>())
     };
     let scalar = |i: usize| a.get(i).and_then(|v| if v.len() == 1 { Some(v[0]) } else { None });
-    match name {
-        "radians" => f1(f64::to_radians),
-        "degrees" => f1(f64::to_degrees),
-        "sin" => f1(f64::sin),
-        "cos" => f1(f64::cos),
-        "tan" => f1(f64::tan),
-        "asin" => f1(f64::asin),
-        "acos" => f1(f64::acos),
-        "atan" if a.len() == 1 => f1(f64::atan),
-        "atan" if a.len() == 2 => Some(Const::Float(scalar(0)?.atan2(scalar(1)?))),
-        "exp" => f1(f64::exp),
-        "sqrt" => f1(f64::sqrt),
-        "inversesqrt" => f1(|x| 1.0 / x.sqrt()),
-        "log" if a.len() == 1 => f1(f64::ln),
-        "log" if a.len() == 2 => Some(Const::Float(scalar(0)?.ln() / scalar(1)?.ln())),
-        "abs" => f1(f64::abs),
-        "floor" => f1(f64::floor),
-        "ceil" => f1(f64::ceil),
-        "round" => f1(f64::round),
-        "sign" => f1(|x| {
+    match builtin {
+        Builtin::Radians => f1(f64::to_radians),
+        Builtin::Degrees => f1(f64::to_degrees),
+        Builtin::Sin => f1(f64::sin),
+        Builtin::Cos => f1(f64::cos),
+        Builtin::Tan => f1(f64::tan),
+        Builtin::Asin => f1(f64::asin),
+        Builtin::Acos => f1(f64::acos),
+        Builtin::Atan if a.len() == 1 => f1(f64::atan),
+        Builtin::Atan if a.len() == 2 => Some(Const::Float(scalar(0)?.atan2(scalar(1)?))),
+        Builtin::Exp => f1(f64::exp),
+        Builtin::Sqrt => f1(f64::sqrt),
+        Builtin::InverseSqrt => f1(|x| 1.0 / x.sqrt()),
+        Builtin::Log if a.len() == 1 => f1(f64::ln),
+        Builtin::Log if a.len() == 2 => Some(Const::Float(scalar(0)?.ln() / scalar(1)?.ln())),
+        Builtin::Abs => f1(f64::abs),
+        Builtin::Floor => f1(f64::floor),
+        Builtin::Ceil => f1(f64::ceil),
+        Builtin::Round => f1(f64::round),
+        Builtin::Sign => f1(|x| {
             if x > 0.0 {
                 1.0
             } else if x < 0.0 {
@@ -330,24 +331,24 @@ fn eval_builtin(name: &str, base: BaseType, args: &[Const]) -> Option<Const> {
                 0.0
             }
         }),
-        "pow" => Some(Const::Float(scalar(0)?.powf(scalar(1)?))),
-        "mod" => {
+        Builtin::Pow => Some(Const::Float(scalar(0)?.powf(scalar(1)?))),
+        Builtin::Mod => {
             let (x, y) = (scalar(0)?, scalar(1)?);
             Some(Const::Float(x - y * (x / y).floor()))
         }
-        "min" if a.len() == 2 && a[0].len() == a[1].len() => {
+        Builtin::Min if a.len() == 2 && a[0].len() == a[1].len() => {
             from_comps(base, &a[0].iter().zip(&a[1]).map(|(x, y)| x.min(*y)).collect::<Vec<_>>())
         }
-        "max" if a.len() == 2 && a[0].len() == a[1].len() => {
+        Builtin::Max if a.len() == 2 && a[0].len() == a[1].len() => {
             from_comps(base, &a[0].iter().zip(&a[1]).map(|(x, y)| x.max(*y)).collect::<Vec<_>>())
         }
-        "clamp" => {
+        Builtin::Clamp => {
             let (x, lo, hi) = (scalar(0)?, scalar(1)?, scalar(2)?);
             // As the interpreter: the lower bound wins when the bounds cross.
             Some(Const::Float(x.min(hi).max(lo)))
         }
-        "step" => Some(Const::Float(if scalar(1)? < scalar(0)? { 0.0 } else { 1.0 })),
-        "length" if a.len() == 1 && a[0].len() == 3 => {
+        Builtin::Step => Some(Const::Float(if scalar(1)? < scalar(0)? { 0.0 } else { 1.0 })),
+        Builtin::Length if a.len() == 1 && a[0].len() == 3 => {
             Some(Const::Float(a[0].iter().map(|x| x * x).sum::<f64>().sqrt()))
         }
         _ => None,

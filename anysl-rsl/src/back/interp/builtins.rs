@@ -5,6 +5,7 @@
 use super::exec::Frame;
 use super::prepare::Loc;
 use super::texture;
+use crate::builtins::Builtin;
 use crate::ir::Const;
 use crate::types::BaseType;
 use anysl_core::prelude::*;
@@ -79,7 +80,6 @@ pub enum Bi {
     Transform(Xf, bool, u32),
     Ctransform(u32),
     Determinant,
-    Inverse,
     Translate,
     RotateM,
     ScaleM,
@@ -140,7 +140,7 @@ pub enum Bi {
     Fill(u32, u32),
     ShaderName,
     Depth,
-    Sqr,
+    FilteredPulse,
 }
 
 fn w(t: BaseType) -> u32 {
@@ -151,7 +151,7 @@ fn w(t: BaseType) -> u32 {
 /// constant arguments, output-slot types and return type. `None` when unsupported.
 #[must_use]
 pub fn resolve(
-    name: &str,
+    builtin: Builtin,
     args: &[(BaseType, Option<u32>)],
     consts: &[Option<Const>],
     _outs: &[Option<(BaseType, Option<u32>)>],
@@ -171,87 +171,88 @@ pub fn resolve(
         }
     };
     let un = |u: Un| (n == 1).then_some(Bi::Un(u, w(ty(0))));
-    Some(match name {
-        "abs" => un(Un::Abs)?,
-        "sign" => un(Un::Sign)?,
-        "floor" => un(Un::Floor)?,
-        "ceil" => un(Un::Ceil)?,
-        "round" => un(Un::Round)?,
-        "sqrt" => un(Un::Sqrt)?,
-        "inversesqrt" => un(Un::InvSqrt)?,
-        "exp" => un(Un::Exp)?,
-        "log" if n == 1 => un(Un::Log)?,
-        "log" if n == 2 => Bi::Bin(Bin::LogBase, w(ty(0)), true),
-        "sin" => un(Un::Sin)?,
-        "cos" => un(Un::Cos)?,
-        "tan" => un(Un::Tan)?,
-        "asin" => un(Un::Asin)?,
-        "acos" => un(Un::Acos)?,
-        "atan" if n == 1 => un(Un::Atan)?,
-        "atan" if n == 2 => Bi::Bin(Bin::Atan2, 1, true),
-        "radians" => un(Un::Radians)?,
-        "degrees" => un(Un::Degrees)?,
-        "sqr" => Bi::Sqr,
-        "pow" if n == 2 => Bi::Bin(Bin::Pow, w(ty(0)), w(ty(1)) == 1),
-        "mod" if n == 2 => Bi::Bin(Bin::Mod, w(ty(0)), w(ty(1)) == 1),
-        "min" if n >= 2 => Bi::Bin(Bin::Min, rw, false),
-        "max" if n >= 2 => Bi::Bin(Bin::Max, rw, false),
-        "step" if n == 2 => Bi::Bin(Bin::Step, rw, w(ty(0)) == 1),
-        "clamp" if n == 3 => Bi::Clamp(rw, w(ty(1)) == 1),
-        "mix" if n == 3 => Bi::Mix(rw, w(ty(2)) == 1),
-        "smoothstep" if n == 3 => Bi::Smoothstep(rw),
-        "length" => Bi::Length,
-        "normalize" => Bi::Normalize,
-        "distance" => Bi::Distance,
-        "faceforward" => Bi::Faceforward(n == 3),
-        "reflect" => Bi::Reflect,
-        "refract" => Bi::Refract,
-        "fresnel" => Bi::Fresnel,
-        "ptlined" => Bi::Ptlined,
-        "rotate" if ty(0).is_triple() => Bi::Rotate,
-        "rotate" => Bi::RotateM,
-        "translate" => Bi::Translate,
-        "scale" => Bi::ScaleM,
-        "xcomp" => Bi::Xcomp(0),
-        "ycomp" => Bi::Xcomp(1),
-        "zcomp" => Bi::Xcomp(2),
-        "setxcomp" => Bi::SetXcomp(0),
-        "setycomp" => Bi::SetXcomp(1),
-        "setzcomp" => Bi::SetXcomp(2),
-        "comp" if ty(0) == B::Matrix => Bi::MComp,
-        "comp" => Bi::Comp(w(ty(0))),
-        "setcomp" if _outs.first().copied().flatten().is_some_and(|o| o.0 == B::Matrix) => Bi::MSetComp,
-        "setcomp" => Bi::SetComp(3),
-        "transform" | "vtransform" | "ntransform" => {
-            let xf = match (name, ret) {
-                ("vtransform", _) | (_, B::Vector) => Xf::Vector,
-                ("ntransform", _) | (_, B::Normal) => Xf::Normal,
+    Some(match builtin {
+        Builtin::Abs => un(Un::Abs)?,
+        Builtin::Sign => un(Un::Sign)?,
+        Builtin::Floor => un(Un::Floor)?,
+        Builtin::Ceil => un(Un::Ceil)?,
+        Builtin::Round => un(Un::Round)?,
+        Builtin::Sqrt => un(Un::Sqrt)?,
+        Builtin::InverseSqrt => un(Un::InvSqrt)?,
+        Builtin::Exp => un(Un::Exp)?,
+        Builtin::Log if n == 1 => un(Un::Log)?,
+        Builtin::Log if n == 2 => Bi::Bin(Bin::LogBase, w(ty(0)), true),
+        Builtin::Sin => un(Un::Sin)?,
+        Builtin::Cos => un(Un::Cos)?,
+        Builtin::Tan => un(Un::Tan)?,
+        Builtin::Asin => un(Un::Asin)?,
+        Builtin::Acos => un(Un::Acos)?,
+        Builtin::Atan if n == 1 => un(Un::Atan)?,
+        Builtin::Atan if n == 2 => Bi::Bin(Bin::Atan2, 1, true),
+        Builtin::Radians => un(Un::Radians)?,
+        Builtin::Degrees => un(Un::Degrees)?,
+        Builtin::Pow if n == 2 => Bi::Bin(Bin::Pow, w(ty(0)), w(ty(1)) == 1),
+        Builtin::Mod if n == 2 => Bi::Bin(Bin::Mod, w(ty(0)), w(ty(1)) == 1),
+        Builtin::Min if n >= 2 => Bi::Bin(Bin::Min, rw, false),
+        Builtin::Max if n >= 2 => Bi::Bin(Bin::Max, rw, false),
+        Builtin::Step if n == 2 => Bi::Bin(Bin::Step, rw, w(ty(0)) == 1),
+        Builtin::Clamp if n == 3 => Bi::Clamp(rw, w(ty(1)) == 1),
+        Builtin::Mix if n == 3 => Bi::Mix(rw, w(ty(2)) == 1),
+        Builtin::SmoothStep if n == 3 => Bi::Smoothstep(rw),
+        Builtin::Length => Bi::Length,
+        Builtin::Normalize => Bi::Normalize,
+        Builtin::Distance => Bi::Distance,
+        Builtin::FaceForward => Bi::Faceforward(n == 3),
+        Builtin::Reflect => Bi::Reflect,
+        Builtin::Refract => Bi::Refract,
+        Builtin::Fresnel => Bi::Fresnel,
+        Builtin::PtLineD => Bi::Ptlined,
+        Builtin::Rotate if ty(0).is_triple() => Bi::Rotate,
+        Builtin::Rotate => Bi::RotateM,
+        Builtin::Translate => Bi::Translate,
+        Builtin::Scale => Bi::ScaleM,
+        Builtin::XComp => Bi::Xcomp(0),
+        Builtin::YComp => Bi::Xcomp(1),
+        Builtin::ZComp => Bi::Xcomp(2),
+        Builtin::SetXComp => Bi::SetXcomp(0),
+        Builtin::SetYComp => Bi::SetXcomp(1),
+        Builtin::SetZComp => Bi::SetXcomp(2),
+        Builtin::Comp if ty(0) == B::Matrix => Bi::MComp,
+        Builtin::Comp => Bi::Comp(w(ty(0))),
+        Builtin::SetComp if _outs.first().copied().flatten().is_some_and(|o| o.0 == B::Matrix) => Bi::MSetComp,
+        Builtin::SetComp => Bi::SetComp(3),
+        Builtin::Transform | Builtin::VTransform | Builtin::NTransform => {
+            let xf = match (builtin, ret) {
+                (Builtin::VTransform, _) | (_, B::Vector) => Xf::Vector,
+                (Builtin::NTransform, _) | (_, B::Normal) => Xf::Normal,
                 _ => Xf::Point,
             };
             let matrix = args.iter().any(|a| a.0 == B::Matrix);
             let spaces = args.iter().filter(|a| a.0 == B::String).count() as u32;
             Bi::Transform(xf, matrix, spaces)
         }
-        "ctransform" => Bi::Ctransform(args.iter().filter(|a| a.0 == B::String).count() as u32),
-        "determinant" => Bi::Determinant,
-        "inverse" => Bi::Inverse,
-        "Du" => Bi::Du(w(ty(0))),
-        "Dv" => Bi::Dv(w(ty(0))),
-        "Deriv" => Bi::Deriv(w(ty(0))),
-        "area" => Bi::Area,
-        "calculatenormal" => Bi::CalcNormal,
-        "filterwidth" => Bi::FilterWidth(w(ty(0))),
-        "filterstep" => Bi::FilterStep(args.iter().take_while(|a| a.0 != B::String).count() as u32),
-        "noise" | "snoise" => Bi::Noise { dims: dims(args)?, out: rw, signed: name == "snoise" },
-        "pnoise" | "psnoise" => {
-            let half = n / 2;
-            Bi::PNoise { dims: dims(&args[..half])?, out: rw, signed: name == "psnoise" }
+        Builtin::CTransform => Bi::Ctransform(args.iter().filter(|a| a.0 == B::String).count() as u32),
+        Builtin::Determinant => Bi::Determinant,
+        Builtin::Du => Bi::Du(w(ty(0))),
+        Builtin::Dv => Bi::Dv(w(ty(0))),
+        Builtin::Deriv => Bi::Deriv(w(ty(0))),
+        Builtin::Area => Bi::Area,
+        Builtin::CalculateNormal => Bi::CalcNormal,
+        Builtin::FilterWidth => Bi::FilterWidth(w(ty(0))),
+        Builtin::FilteredPulse => Bi::FilteredPulse,
+        Builtin::FilterStep => Bi::FilterStep(args.iter().take_while(|a| a.0 != B::String).count() as u32),
+        Builtin::Noise | Builtin::SNoise => {
+            Bi::Noise { dims: dims(args)?, out: rw, signed: builtin == Builtin::SNoise }
         }
-        "cellnoise" => Bi::CellNoise { dims: dims(args)?, out: rw },
-        "fbm" => Bi::Fbm { dims: if ty(0).is_triple() { 3 } else { 1 } },
-        "turbulence" => Bi::Turbulence { dims: if ty(0).is_triple() { 3 } else { 1 } },
-        "random" => Bi::Random(rw),
-        "spline" => {
+        Builtin::PNoise | Builtin::PSNoise => {
+            let half = n / 2;
+            Bi::PNoise { dims: dims(&args[..half])?, out: rw, signed: builtin == Builtin::PSNoise }
+        }
+        Builtin::CellNoise => Bi::CellNoise { dims: dims(args)?, out: rw },
+        Builtin::Fbm => Bi::Fbm { dims: if ty(0).is_triple() { 3 } else { 1 } },
+        Builtin::Turbulence => Bi::Turbulence { dims: if ty(0).is_triple() { 3 } else { 1 } },
+        Builtin::Random => Bi::Random(rw),
+        Builtin::Spline => {
             let basis = ty(0) == B::String;
             let first = usize::from(basis) + 1;
             let rest = args.get(first..)?;
@@ -261,36 +262,54 @@ pub fn resolve(
                 Bi::Spline { w: rw, n: rest.len() as u32, array: false, basis }
             }
         }
-        "ambient" => Bi::Ambient,
-        "diffuse" => Bi::Diffuse,
-        "specular" => Bi::Specular,
-        "specularbrdf" => Bi::SpecularBrdf,
-        "phong" => Bi::Phong,
-        "trace" => Bi::Trace,
-        "texture" | "environment" | "shadow" => {
-            let kind = match name {
-                "texture" => texture::Kind::Texture,
-                "environment" => texture::Kind::Environment,
+        Builtin::Ambient => Bi::Ambient,
+        Builtin::Diffuse => Bi::Diffuse,
+        Builtin::Specular => Bi::Specular,
+        Builtin::SpecularBrdf => Bi::SpecularBrdf,
+        Builtin::Phong => Bi::Phong,
+        Builtin::Trace => Bi::Trace,
+        Builtin::Texture | Builtin::Environment | Builtin::Shadow => {
+            let kind = match builtin {
+                Builtin::Texture => texture::Kind::Texture,
+                Builtin::Environment => texture::Kind::Environment,
                 _ => texture::Kind::Shadow,
             };
             // Coordinates: the numeric arguments before the first parameter-list string.
             let coords = args.iter().skip(1).take_while(|a| a.0 != B::String).count() as u32;
             Bi::Texture { kind, out: rw, coords }
         }
-        "concat" => Bi::Concat,
-        "format" => Bi::Format,
-        "printf" => Bi::Printf,
-        "match" => Bi::Match,
-        "surface" | "lightsource" | "displacement" | "atmosphere" | "incident" | "opposite" | "attribute"
-        | "option" | "rendererinfo" | "textureinfo" => Bi::Query,
-        "rayinfo" => Bi::Query,
+        Builtin::Concat => Bi::Concat,
+        Builtin::Format => Bi::Format,
+        Builtin::Printf => Bi::Printf,
+        Builtin::Match => Bi::Match,
+        Builtin::Surface
+        | Builtin::LightSource
+        | Builtin::Displacement
+        | Builtin::Atmosphere
+        | Builtin::Incident
+        | Builtin::Opposite
+        | Builtin::Attribute
+        | Builtin::Option
+        | Builtin::RendererInfo
+        | Builtin::TextureInfo => Bi::Query,
+        Builtin::RayInfo => Bi::Query,
         // Outside a scene: camera rays, nothing occludes, no indirect or caustic light.
-        "raylevel" | "isshadowray" | "isindirectray" | "occlusion" => Bi::Fill(0, 1),
-        "indirectdiffuse" | "caustic" => Bi::Fill(0, 3),
-        "transmission" => Bi::Fill(1, 3),
-        "shadername" => Bi::ShaderName,
-        "depth" => Bi::Depth,
-        _ => {
+        Builtin::RayLevel | Builtin::IsShadowRay | Builtin::IsIndirectRay | Builtin::Occlusion => Bi::Fill(0, 1),
+        Builtin::IndirectDiffuse | Builtin::Caustic => Bi::Fill(0, 3),
+        Builtin::Transmission => Bi::Fill(1, 3),
+        Builtin::ShaderName => Bi::ShaderName,
+        Builtin::Depth => Bi::Depth,
+        // Arities the checker never produces.
+        Builtin::Log
+        | Builtin::Atan
+        | Builtin::Pow
+        | Builtin::Mod
+        | Builtin::Min
+        | Builtin::Max
+        | Builtin::Step
+        | Builtin::Clamp
+        | Builtin::Mix
+        | Builtin::SmoothStep => {
             let _ = consts;
             return None;
         }
@@ -425,10 +444,6 @@ pub fn call<F: ShadingFloat, C: ShadingContext<F>>(
                 fr.set(d + c, k, v);
             }
         }
-        Bi::Sqr => {
-            let x = fr.get(a(0), k);
-            fr.set(d, k, x * x);
-        }
         Bi::Length => {
             let v = fr.vec3(a(0), k).length();
             fr.set(d, k, v);
@@ -533,10 +548,6 @@ pub fn call<F: ShadingFloat, C: ShadingContext<F>>(
             let v = fr.matrix(a(0), k).determinant();
             fr.set(d, k, v);
         }
-        Bi::Inverse => {
-            let v = fr.matrix(a(0), k).inverse();
-            fr.set_matrix(d, k, &v);
-        }
         Bi::Translate => {
             let r = fr.matrix(a(0), k) * Matrix4::translate(fr.vec3(a(1), k));
             fr.set_matrix(d, k, &r);
@@ -599,6 +610,7 @@ pub fn call<F: ShadingFloat, C: ShadingContext<F>>(
             };
             fr.set(d, k, v);
         }
+        Bi::FilteredPulse => fr.set(d, k, filteredpulse(fr.get(a(0), k), fr.get(a(1), k), fr.get(a(2), k))),
         Bi::Noise { dims, out, signed } => {
             let dm = domain(fr, args, dims, k);
             if out == 1 {

@@ -509,7 +509,7 @@ impl Cx<'_> {
                 };
                 Code::FromSpace { dst: dst.off(), space, src: arg(1).off(), base: inst.ty.base }
             }
-            Op::Call { name, outputs, .. } => {
+            Op::Call { builtin, outputs, .. } => {
                 let arg_tys: Vec<(BaseType, Option<u32>)> = inst
                     .args
                     .iter()
@@ -530,8 +530,8 @@ impl Cx<'_> {
                     .iter()
                     .map(|o| o.map(|s| (self.m.func.slot(s).ty.base, self.m.func.slot(s).ty.array)))
                     .collect();
-                let f = builtins::resolve(name, &arg_tys, &consts, &out_tys, inst.ty.base).ok_or_else(|| {
-                    PrepareError(format!("built-in `{name}` with arguments {arg_tys:?} returning {}", inst.ty.base))
+                let f = builtins::resolve(*builtin, &arg_tys, &consts, &out_tys, inst.ty.base).ok_or_else(|| {
+                    PrepareError(format!("built-in `{builtin}` with arguments {arg_tys:?} returning {}", inst.ty.base))
                 })?;
                 Code::Call {
                     f,

@@ -40,7 +40,7 @@
 
 pub mod rt;
 
-use crate::builtins::OVERLOADS;
+use crate::builtins::Builtin;
 use crate::diag::{Diagnostic, Diagnostics};
 use crate::ir::{BinOp, Const, Function, Global, Module, Node, Op, ShaderKind, SlotId, SlotKind, UnOp, Value};
 use crate::passes::{optimize, PassOptions};
@@ -184,31 +184,6 @@ enum Repr {
     Scalar,
     Lane,
 }
-
-/// Built-ins that need the shading context or the globals: never computed as scalars.
-const LANE_ONLY: &[&str] = &[
-    "Du",
-    "Dv",
-    "Deriv",
-    "calculatenormal",
-    "random",
-    "ambient",
-    "diffuse",
-    "specular",
-    "phong",
-    "trace",
-    "texture",
-    "environment",
-    "shadow",
-    "depth",
-    "area",
-    "filterwidth",
-    "filterstep",
-    "faceforward",
-];
-
-/// Built-ins that need the context itself (not only the globals).
-const CONTEXT_CALLS: &[&str] = &["ambient", "diffuse", "specular", "phong", "trace"];
 
 fn ident(name: &str) -> String {
     const KW: &[&str] = &[
@@ -394,7 +369,7 @@ impl<'a> Gen<'a> {
                             .any(|a| self.vr[a.0 as usize] == Repr::Lane && !self.is_string(f.inst(*a).ty))
                         || match &inst.op {
                             Op::Load(s) | Op::LoadElem(s) => self.sr[s.0 as usize] == Repr::Lane,
-                            Op::Call { name, .. } => LANE_ONLY.contains(&name.as_str()),
+                            Op::Call { builtin, .. } => builtin.lane_only(),
                             _ => false,
                         }
                 };
@@ -2026,9 +2001,9 @@ impl<'a> Gen<'a> {
                     }
                 }
             }
-            Op::Call { name, overload, outputs } => {
-                let (name, overload, outputs) = (name.clone(), *overload, outputs.clone());
-                self.call(v, &name, overload, &outputs, r)?
+            Op::Call { builtin, outputs, .. } => {
+                let (builtin, outputs) = (*builtin, outputs.clone());
+                self.call(v, builtin, &outputs, r)?
             }
         })
     }
@@ -2200,14 +2175,7 @@ impl<'a> Gen<'a> {
     }
 
     #[allow(clippy::too_many_lines)]
-    fn call(
-        &mut self,
-        v: Value,
-        name: &str,
-        overload: u32,
-        outputs: &[Option<SlotId>],
-        r: Repr,
-    ) -> Result<String, GenError> {
+    fn call(&mut self, v: Value, builtin: Builtin, outputs: &[Option<SlotId>], r: Repr) -> Result<String, GenError> {
         use BaseType as B;
         let inst = self.f.inst(v);
         let args = inst.args.clone();
@@ -2223,13 +2191,12 @@ impl<'a> Gen<'a> {
                 format!("{}.lane(0)", self.val(args[i], Repr::Lane))
             }
         };
-        let key = OVERLOADS.get(overload as usize).map_or("", |o| o.key);
         let g = "g";
-        if CONTEXT_CALLS.contains(&name) && self.in_closure {
+        if builtin.calls_renderer() && self.in_closure {
             return Err(self.err(
                 span,
                 format!(
-                    "generated Rust cannot call `{name}` inside an `illuminance` body: the light-loop body is a closure and cannot use the shading context; compute it before the loop"
+                    "generated Rust cannot call `{builtin}` inside an `illuminance` body: the light-loop body is a closure and cannot use the shading context; compute it before the loop"
                 ),
             ));
         }
@@ -2260,33 +2227,32 @@ impl<'a> Gen<'a> {
             let f = f.to_string();
             map1(&|x: &str| f.replace('$', x), a(0), tb(0))
         };
-        let e = match name {
-            "abs" => un("$.abs()"),
-            "sign" => un("sign($)"),
-            "floor" => un("$.floor()"),
-            "ceil" => un("$.ceil()"),
-            "round" => un("$.round()"),
-            "sqrt" => un("$.sqrt()"),
-            "inversesqrt" => un("inversesqrt($)"),
-            "exp" => un("$.exp()"),
-            "log" if n == 1 => un("$.ln()"),
-            "log" => format!("log_base({}, {})", a(0), a(1)),
-            "sin" => un("$.sin()"),
-            "cos" => un("$.cos()"),
-            "tan" => un("$.tan()"),
-            "asin" => un("$.asin()"),
-            "acos" => un("$.acos()"),
-            "atan" if n == 1 => un("$.atan()"),
-            "atan" => format!("{}.atan2({})", a(0), a(1)),
-            "radians" => un("radians($)"),
-            "degrees" => un("degrees($)"),
-            "sqr" => format!("sqr({})", a(0)),
-            "pow" | "mod" | "step" | "min" | "max" => {
-                let f = match name {
-                    "pow" => "$0.pow($1)",
-                    "mod" => "fmod($0, $1)",
-                    "step" => "step($0, $1)",
-                    "min" => "$0.min($1)",
+        let e = match builtin {
+            Builtin::Abs => un("$.abs()"),
+            Builtin::Sign => un("sign($)"),
+            Builtin::Floor => un("$.floor()"),
+            Builtin::Ceil => un("$.ceil()"),
+            Builtin::Round => un("$.round()"),
+            Builtin::Sqrt => un("$.sqrt()"),
+            Builtin::InverseSqrt => un("inversesqrt($)"),
+            Builtin::Exp => un("$.exp()"),
+            Builtin::Log if n == 1 => un("$.ln()"),
+            Builtin::Log => format!("log_base({}, {})", a(0), a(1)),
+            Builtin::Sin => un("$.sin()"),
+            Builtin::Cos => un("$.cos()"),
+            Builtin::Tan => un("$.tan()"),
+            Builtin::Asin => un("$.asin()"),
+            Builtin::Acos => un("$.acos()"),
+            Builtin::Atan if n == 1 => un("$.atan()"),
+            Builtin::Atan => format!("{}.atan2({})", a(0), a(1)),
+            Builtin::Radians => un("radians($)"),
+            Builtin::Degrees => un("degrees($)"),
+            Builtin::Pow | Builtin::Mod | Builtin::Step | Builtin::Min | Builtin::Max => {
+                let f = match builtin {
+                    Builtin::Pow => "$0.pow($1)",
+                    Builtin::Mod => "fmod($0, $1)",
+                    Builtin::Step => "step($0, $1)",
+                    Builtin::Min => "$0.min($1)",
                     _ => "$0.max($1)",
                 };
                 let fold = |c: Option<usize>| -> String {
@@ -2306,10 +2272,10 @@ impl<'a> Gen<'a> {
                     format!("{{ {} {} }}", bind(n), fold(None))
                 }
             }
-            "clamp" | "mix" | "smoothstep" => {
-                let f = match name {
-                    "clamp" => "clamp",
-                    "mix" => "mix",
+            Builtin::Clamp | Builtin::Mix | Builtin::SmoothStep => {
+                let f = match builtin {
+                    Builtin::Clamp => "clamp",
+                    Builtin::Mix => "mix",
                     _ => "smoothstep",
                 };
                 if ret.is_triple() {
@@ -2320,14 +2286,14 @@ impl<'a> Gen<'a> {
                     format!("{f}({}, {}, {})", a(0), a(1), a(2))
                 }
             }
-            "length" => format!("{}.length()", a(0)),
-            "normalize" => format!("{}.normalize()", a(0)),
-            "distance" => format!("distance({}, {})", a(0), a(1)),
-            "faceforward" if n == 3 => format!("faceforward({}, {}, {})", a(0), a(1), a(2)),
-            "faceforward" => format!("faceforward({}, {}, {g}.Ng)", a(0), a(1)),
-            "reflect" => format!("reflect({}, {})", a(0), a(1)),
-            "refract" => format!("refract({}, {}, {})", a(0), a(1), a(2)),
-            "fresnel" => {
+            Builtin::Length => format!("{}.length()", a(0)),
+            Builtin::Normalize => format!("{}.normalize()", a(0)),
+            Builtin::Distance => format!("distance({}, {})", a(0), a(1)),
+            Builtin::FaceForward if n == 3 => format!("faceforward({}, {}, {})", a(0), a(1), a(2)),
+            Builtin::FaceForward => format!("faceforward({}, {}, {g}.Ng)", a(0), a(1)),
+            Builtin::Reflect => format!("reflect({}, {})", a(0), a(1)),
+            Builtin::Refract => format!("refract({}, {}, {})", a(0), a(1), a(2)),
+            Builtin::Fresnel => {
                 let call = format!("fresnel({}, {}, {})", a(0), a(1), a(2));
                 let tmp = self.fresh("fr");
                 self.line(&format!("let {tmp} = {call};"));
@@ -2340,17 +2306,25 @@ impl<'a> Gen<'a> {
                 }
                 "()".into()
             }
-            "ptlined" => format!("ptlined({}, {}, {})", a(0), a(1), a(2)),
-            "rotate" if tb(0).is_triple() => format!("rotate({}, {}, {}, {})", a(0), a(1), a(2), a(3)),
-            "rotate" => format!("({} * Matrix4::rotate({}, {}))", a(0), a(1), a(2)),
-            "translate" => format!("({} * Matrix4::translate({}))", a(0), a(1)),
-            "scale" => format!("({} * Matrix4::scale({}))", a(0), a(1)),
-            "xcomp" | "ycomp" | "zcomp" => {
-                let c = ["xcomp", "ycomp", "zcomp"].iter().position(|x| *x == name).unwrap_or(0);
+            Builtin::PtLineD => format!("ptlined({}, {}, {})", a(0), a(1), a(2)),
+            Builtin::Rotate if tb(0).is_triple() => format!("rotate({}, {}, {}, {})", a(0), a(1), a(2), a(3)),
+            Builtin::Rotate => format!("({} * Matrix4::rotate({}, {}))", a(0), a(1), a(2)),
+            Builtin::Translate => format!("({} * Matrix4::translate({}))", a(0), a(1)),
+            Builtin::Scale => format!("({} * Matrix4::scale({}))", a(0), a(1)),
+            Builtin::XComp | Builtin::YComp | Builtin::ZComp => {
+                let c = match builtin {
+                    Builtin::XComp => 0,
+                    Builtin::YComp => 1,
+                    _ => 2,
+                };
                 format!("{}.{}", a(0), comps(tb(0))[c])
             }
-            "setxcomp" | "setycomp" | "setzcomp" => {
-                let c = ["setxcomp", "setycomp", "setzcomp"].iter().position(|x| *x == name).unwrap_or(0);
+            Builtin::SetXComp | Builtin::SetYComp | Builtin::SetZComp => {
+                let c = match builtin {
+                    Builtin::SetXComp => 0,
+                    Builtin::SetYComp => 1,
+                    _ => 2,
+                };
                 if let Some(Some(s)) = outputs.first() {
                     let var = self.slot_var(*s);
                     let sr = self.sr[s.0 as usize];
@@ -2360,7 +2334,7 @@ impl<'a> Gen<'a> {
                 }
                 "()".into()
             }
-            "comp" if tb(0) == B::Matrix => {
+            Builtin::Comp if tb(0) == B::Matrix => {
                 format!(
                     "{{ let m = {}; m.m[(({}) as usize).min(3)][(({}) as usize).min(3)] }}",
                     a(0),
@@ -2368,7 +2342,7 @@ impl<'a> Gen<'a> {
                     lane0(2)
                 )
             }
-            "comp" => {
+            Builtin::Comp => {
                 let x = a(0);
                 let cs = comps(tb(0));
                 if r == Repr::Scalar {
@@ -2383,7 +2357,7 @@ impl<'a> Gen<'a> {
                     )
                 }
             }
-            "setcomp" => {
+            Builtin::SetComp => {
                 if let Some(Some(s)) = outputs.first() {
                     let var = self.slot_var(*s);
                     let sr = self.sr[s.0 as usize];
@@ -2429,13 +2403,13 @@ impl<'a> Gen<'a> {
                 }
                 "()".into()
             }
-            "transform" | "vtransform" | "ntransform" => {
+            Builtin::Transform | Builtin::VTransform | Builtin::NTransform => {
                 let last = a(n - 1);
                 match args.iter().position(|x| self.arg_ty(*x).base == B::Matrix) {
                     Some(mi) => {
-                        let f = match (name, ret) {
-                            ("vtransform", _) | (_, B::Vector) => "transform_vector",
-                            ("ntransform", _) | (_, B::Normal) => "transform_normal",
+                        let f = match (builtin, ret) {
+                            (Builtin::VTransform, _) | (_, B::Vector) => "transform_vector",
+                            (Builtin::NTransform, _) | (_, B::Normal) => "transform_normal",
                             _ => "transform_point",
                         };
                         let strings = args.iter().filter(|x| self.arg_ty(**x).base == B::String).count();
@@ -2449,9 +2423,9 @@ impl<'a> Gen<'a> {
                         }
                     }
                     None => {
-                        let f = match (name, ret) {
-                            ("vtransform", _) | (_, B::Vector) => "transform_vector",
-                            ("ntransform", _) | (_, B::Normal) => "transform_normal",
+                        let f = match (builtin, ret) {
+                            (Builtin::VTransform, _) | (_, B::Vector) => "transform_vector",
+                            (Builtin::NTransform, _) | (_, B::Normal) => "transform_normal",
                             _ => "transform_point",
                         };
                         let t = if r == Repr::Scalar { "f64" } else { "F" };
@@ -2464,7 +2438,7 @@ impl<'a> Gen<'a> {
                     }
                 }
             }
-            "ctransform" => {
+            Builtin::CTransform => {
                 let spaces = args.iter().filter(|x| self.arg_ty(**x).base == B::String).count();
                 let c = a(spaces);
                 let from = if spaces == 2 {
@@ -2477,28 +2451,27 @@ impl<'a> Gen<'a> {
                     "{{ let c = {c}; match ({from}, {to}) {{ (Some(f), Some(t)) => ctransform(f, t, c), _ => c }} }}"
                 )
             }
-            "determinant" => format!("{}.determinant()", a(0)),
-            "inverse" => format!("{}.inverse()", a(0)),
-            "Du" | "Dv" => {
-                let f = if name == "Du" { "du" } else { "dv" };
+            Builtin::Determinant => format!("{}.determinant()", a(0)),
+            Builtin::Du | Builtin::Dv => {
+                let f = if builtin == Builtin::Du { "du" } else { "dv" };
                 if tb(0).is_triple() {
                     format!("({}).map(|x| {f}(&{g}, x))", a(0))
                 } else {
                     format!("{f}(&{g}, {})", a(0))
                 }
             }
-            "Deriv" => {
+            Builtin::Deriv => {
                 if tb(0).is_triple() {
                     format!("{{ let d = {}; ({}).map(|x| deriv(&{g}, x, d)) }}", a(1), a(0))
                 } else {
                     format!("deriv(&{g}, {}, {})", a(0), a(1))
                 }
             }
-            "area" => format!("area({})", a(0)),
-            "calculatenormal" => format!("calculatenormal(&{g}, {})", a(0)),
-            "filterwidth" if tb(0).is_triple() => format!("filterwidth_point({})", a(0)),
-            "filterwidth" => format!("filterwidth({})", a(0)),
-            "filterstep" => {
+            Builtin::Area => format!("area({})", a(0)),
+            Builtin::CalculateNormal => format!("calculatenormal(&{g}, {})", a(0)),
+            Builtin::FilterWidth if tb(0).is_triple() => format!("filterwidth_point({})", a(0)),
+            Builtin::FilterWidth => format!("filterwidth({})", a(0)),
+            Builtin::FilterStep => {
                 let nnum = args.iter().take_while(|x| self.arg_ty(**x).base != B::String).count();
                 if nnum >= 3 {
                     format!(
@@ -2511,8 +2484,8 @@ impl<'a> Gen<'a> {
                     format!("filterstep({}, {})", a(0), a(1))
                 }
             }
-            "noise" | "snoise" | "pnoise" | "psnoise" | "cellnoise" => {
-                let periodic = name.starts_with('p');
+            Builtin::Noise | Builtin::SNoise | Builtin::PNoise | Builtin::PSNoise | Builtin::CellNoise => {
+                let periodic = matches!(builtin, Builtin::PNoise | Builtin::PSNoise);
                 let nd = if periodic { n / 2 } else { n };
                 let dom = |off: usize| -> Result<String, GenError> {
                     let t: Vec<B> = (off..off + nd).map(tb).collect();
@@ -2525,13 +2498,13 @@ impl<'a> Gen<'a> {
                         }
                         _ => {
                             return Err(
-                                self.err(span, format!("`{name}` with these argument types has no implementation"))
+                                self.err(span, format!("`{builtin}` with these argument types has no implementation"))
                             )
                         }
                     })
                 };
                 let d = dom(0)?;
-                let signed = name == "snoise" || name == "psnoise";
+                let signed = matches!(builtin, Builtin::SNoise | Builtin::PSNoise);
                 let vecr = ret.is_triple();
                 let e = if periodic {
                     let p = dom(nd)?;
@@ -2543,7 +2516,7 @@ impl<'a> Gen<'a> {
                             format!("(vpnoise({d}, {p}) * {} - Vec3::splat({}))", self.k(2.0, r), self.k(1.0, r))
                         }
                     }
-                } else if name == "cellnoise" {
+                } else if builtin == Builtin::CellNoise {
                     if vecr {
                         format!("vcellnoise({d})")
                     } else {
@@ -2563,7 +2536,7 @@ impl<'a> Gen<'a> {
                     e
                 }
             }
-            "fbm" | "turbulence" => {
+            Builtin::Fbm | Builtin::Turbulence => {
                 let d = if tb(0).is_triple() {
                     format!("NoiseDomain::D3({})", self.as_vec(args[0], r))
                 } else {
@@ -2572,9 +2545,9 @@ impl<'a> Gen<'a> {
                 let oct = if n > 1 { format!("(({}).max(0.0) as u32)", lane0(1)) } else { "6".into() };
                 let lac = if n > 2 { lane0(2) } else { "2.0".into() };
                 let gain = if n > 3 { lane0(3) } else { "0.5".into() };
-                format!("{name}({d}, {oct}, {lac}, {gain})")
+                format!("{builtin}({d}, {oct}, {lac}, {gain})")
             }
-            "random" => {
+            Builtin::Random => {
                 let p = format!("{g}.P * F::c(1.0e4)");
                 if ret.is_triple() {
                     tri(ret, [0, 1, 2].map(|c| format!("cellnoise(NoiseDomain::D4({p}, F::c({}.5)))", c)))
@@ -2582,7 +2555,7 @@ impl<'a> Gen<'a> {
                     format!("cellnoise(NoiseDomain::D4({p}, F::c(0.5)))")
                 }
             }
-            "spline" => {
+            Builtin::Spline => {
                 let basis = tb(0) == B::String;
                 let first = usize::from(basis);
                 let b = if basis {
@@ -2599,27 +2572,29 @@ impl<'a> Gen<'a> {
                 };
                 format!("{{ let b = {b}; let k = {knots}; spline(&b, {x}, &k) }}")
             }
-            "ambient" | "diffuse" | "specular" | "phong" | "trace" if light => "Color::zero()".to_string(),
-            "ambient" => format!(
+            Builtin::Ambient | Builtin::Diffuse | Builtin::Specular | Builtin::Phong | Builtin::Trace if light => {
+                "Color::zero()".to_string()
+            }
+            Builtin::Ambient => format!(
                 "ambient(ctx, {})",
                 if self.exec_mut() == "e" { "&*e".to_string() } else { self.exec_mut().replacen("&mut ", "&", 1) }
             ),
-            "diffuse" => format!("diffuse(ctx, {}, {})", self.exec_mut(), a(0)),
-            "specular" => format!("specular(ctx, {}, {}, {}, {})", self.exec_mut(), a(0), a(1), a(2)),
-            "phong" => format!("phong(ctx, {}, {}, {}, {})", self.exec_mut(), a(0), a(1), a(2)),
-            "trace" => {
+            Builtin::Diffuse => format!("diffuse(ctx, {}, {})", self.exec_mut(), a(0)),
+            Builtin::Specular => format!("specular(ctx, {}, {}, {}, {})", self.exec_mut(), a(0), a(1), a(2)),
+            Builtin::Phong => format!("phong(ctx, {}, {}, {}, {})", self.exec_mut(), a(0), a(1), a(2)),
+            Builtin::Trace => {
                 let ex =
                     if self.exec_mut() == "e" { "&*e".to_string() } else { self.exec_mut().replacen("&mut ", "&", 1) };
                 format!("ctx.trace({ex}, {}, {})", a(0), a(1))
             }
-            "specularbrdf" => format!("Color::splat(specularbrdf({}, {}, {}, {}))", a(0), a(1), a(2), a(3)),
-            "texture" | "environment" | "shadow" => {
+            Builtin::SpecularBrdf => format!("Color::splat(specularbrdf({}, {}, {}, {}))", a(0), a(1), a(2), a(3)),
+            Builtin::Texture | Builtin::Environment | Builtin::Shadow => {
                 let rt = self.opts.runtime.clone();
                 let coords = args.iter().skip(1).take_while(|x| self.arg_ty(**x).base != B::String).count();
-                let c = match name {
-                    "shadow" => "Color::zero()".to_string(),
-                    "environment" if coords >= 1 => format!("{rt}::environment({}, {})", a(0), a(1)),
-                    "environment" => "Color::zero()".to_string(),
+                let c = match builtin {
+                    Builtin::Shadow => "Color::zero()".to_string(),
+                    Builtin::Environment if coords >= 1 => format!("{rt}::environment({}, {})", a(0), a(1)),
+                    Builtin::Environment => "Color::zero()".to_string(),
                     _ if coords >= 2 => format!("{rt}::texture({}, Some(({}, {})), &{g})", a(0), a(1), a(2)),
                     _ if coords == 0 => format!("{rt}::texture({}, None, &{g})", a(0)),
                     _ => "Color::zero()".to_string(),
@@ -2630,11 +2605,11 @@ impl<'a> Gen<'a> {
                     c
                 }
             }
-            "concat" => format!(
+            Builtin::Concat => format!(
                 "&*{}",
                 self.leak_string(&format!("[{}].concat()", (0..n).map(a).collect::<Vec<_>>().join(", ")))
             ),
-            "format" | "printf" => {
+            Builtin::Format | Builtin::Printf => {
                 let rt = self.opts.runtime.clone();
                 let mut fa = Vec::new();
                 for x in args.iter().skip(1) {
@@ -2667,14 +2642,14 @@ impl<'a> Gen<'a> {
                     });
                 }
                 let call = format!("{rt}::format_rsl({}, &[{}])", a(0), fa.join(", "));
-                if name == "printf" {
+                if builtin == Builtin::Printf {
                     let guard = if self.full { "true".to_string() } else { format!("{}.any()", self.mask) };
                     format!("if {guard} {{ print!(\"{{}}\", {call}); }}")
                 } else {
                     format!("&*{}", self.leak_string(&call))
                 }
             }
-            "match" => {
+            Builtin::Match => {
                 let rt = self.opts.runtime.clone();
                 format!(
                     "if {rt}::simple_match({}, {}) {{ {} }} else {{ {} }}",
@@ -2684,16 +2659,25 @@ impl<'a> Gen<'a> {
                     self.k(0.0, r)
                 )
             }
-            "surface" | "lightsource" | "displacement" | "atmosphere" | "incident" | "opposite" | "attribute"
-            | "option" | "rendererinfo" | "textureinfo" => self.k(0.0, r),
-            "shadername" => "\"\"".to_string(),
-            "depth" => format!("{g}.P.z"),
-            _ => {
-                return Err(self.err(
-                    span,
-                    format!("generated Rust has no implementation of the built-in `{name}` (overload `{key}`)"),
-                ))
-            }
+            Builtin::Surface
+            | Builtin::LightSource
+            | Builtin::Displacement
+            | Builtin::Atmosphere
+            | Builtin::Incident
+            | Builtin::Opposite
+            | Builtin::Attribute
+            | Builtin::Option
+            | Builtin::RendererInfo
+            | Builtin::TextureInfo => self.k(0.0, r),
+            Builtin::ShaderName => "\"\"".to_string(),
+            Builtin::Depth => format!("{g}.P.z"),
+            Builtin::RayInfo => self.k(0.0, r),
+            // Outside a scene: camera rays, nothing occludes, no indirect or caustic light,
+            // nothing blocks transmission (as the interpreter).
+            Builtin::RayLevel | Builtin::IsShadowRay | Builtin::IsIndirectRay | Builtin::Occlusion => self.k(0.0, r),
+            Builtin::IndirectDiffuse | Builtin::Caustic => "Color::zero()".to_string(),
+            Builtin::Transmission => "Color::splat(F::c(1.0))".to_string(),
+            Builtin::FilteredPulse => format!("filteredpulse({}, {}, {})", a(0), a(1), a(2)),
         };
         Ok(e)
     }
