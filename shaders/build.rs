@@ -36,8 +36,9 @@ fn main() {
                 continue;
             }
         };
+        let analyzed = anysl_rsl::passes::optimize(compiled.module.clone(), &anysl_rsl::passes::PassOptions::default());
         let m = &compiled.module;
-        match generate_with_sources(m, Some(&compiled.sources), &ropts) {
+        match generate_with_sources(&analyzed, Some(&compiled.sources), &ropts) {
             Ok(src) => {
                 let _ = writeln!(out, "// ---- {} ----", file.strip_prefix(&root).unwrap_or(&file).display());
                 out.push_str(&src);

@@ -35,12 +35,10 @@ fn main() {
                 continue;
             }
         };
-        let uses_derivs = {
-            let mut m = compiled.module.clone();
-            anysl_rsl::passes::optimize(&mut m, &anysl_rsl::passes::PassOptions::default()).uses_derivatives
-        };
+        let analyzed = anysl_rsl::passes::optimize(compiled.module.clone(), &anysl_rsl::passes::PassOptions::default());
+        let uses_derivs = analyzed.uses_derivatives();
         let ty = type_name(&compiled.module.name);
-        match generate(&compiled.module, &ropts) {
+        match generate(&analyzed, &ropts) {
             Ok(src) => {
                 let _ = writeln!(out, "#[allow(dead_code, unused_imports)]\npub mod {module} {{\nuse anysl_core::prelude::*;\n{src}\n}}\n");
                 if compiled.module.kind == anysl_rsl::ir::ShaderKind::Surface {

@@ -176,23 +176,28 @@ pub const OUTPUT_ORDER: [(anysl_rsl::ir::Global, usize); 4] = {
 /// Number of values in the output buffer.
 pub const OUTPUT_VALUES: usize = 12;
 
-/// Indices into the host table (callbacks that need the renderer's context).
-#[allow(missing_docs)]
-pub mod host {
-    pub const ILLUMINANCE: usize = 0;
-    pub const AMBIENT: usize = 1;
-    pub const DIFFUSE: usize = 2;
-    pub const SPECULAR: usize = 3;
-    pub const PHONG: usize = 4;
-    pub const TRACE: usize = 5;
-    pub const DU: usize = 6;
-    pub const DV: usize = 7;
-    pub const DERIV: usize = 8;
-    pub const CALCNORMAL: usize = 9;
-    pub const RANDOM: usize = 10;
-    pub const SPACE: usize = 11;
-    pub const LEN: usize = 12;
+/// Where code compiled with [`crate::JitOptions::output_params`] writes the numeric output
+/// parameters of `module`: `(parameter index, first value, values)`, in declaration order,
+/// after the [`OUTPUT_VALUES`] standard outputs (arrays element by element, triples
+/// component by component).
+#[must_use]
+pub fn output_params(module: &anysl_rsl::ir::Module) -> Vec<(usize, usize, usize)> {
+    let mut at = OUTPUT_VALUES;
+    let mut out = Vec::new();
+    for (k, p) in module.params.iter().enumerate() {
+        if !p.output || p.ty.base == anysl_rsl::types::BaseType::String {
+            continue;
+        }
+        let n = p.ty.base.components().max(1) * p.ty.array.unwrap_or(1) as usize;
+        out.push((k, at, n));
+        at += n;
+    }
+    out
 }
+
+/// Indices into the host table (callbacks that need the renderer's context), declared with
+/// the table itself ([`crate::rt::HostTable`]).
+pub use crate::rt::Host;
 
 /// Most lanes of any [`JitFloat`] (`Pair<Pair<F32x8>>`, `Pair<F32x16>`): the size of the mask
 /// buffers the host passes.

@@ -20,10 +20,11 @@ mod points;
 
 pub use points::POINTS_NAME;
 
-use crate::abi::{self, host, GLOBAL_ORDER};
+use crate::abi::{self, Host, GLOBAL_ORDER};
 use crate::rt::{self, RtKind};
 use anysl_rsl::builtins::Builtin;
 use anysl_rsl::ir::{self, BinOp, Block, Const, Function, Global, Node, Op, SlotId, SlotKind, UnOp, Value};
+use anysl_rsl::passes::Analyzed;
 use anysl_rsl::types::{BaseType, Detail, Type};
 use inkwell::attributes::{Attribute, AttributeLoc};
 use inkwell::builder::Builder;
@@ -75,6 +76,9 @@ pub struct Target {
     /// Read numeric parameters from the run-time parameter block (the shade function's
     /// `params` argument, laid out by [`param_block`]) instead of compiling their values in.
     pub runtime_params: bool,
+    /// Also write the numeric output parameters to the output buffer, after the
+    /// [`abi::OUTPUT_VALUES`] standard outputs ([`abi::output_params`]).
+    pub output_params: bool,
 }
 
 /// One float: its value and, for dual numbers, its derivatives.
@@ -990,7 +994,7 @@ impl<'c, 'm> Cg<'c, 'm> {
             .const_to_pointer(self.rt_fn_type().ptr_type(AddressSpace::default()))
     }
 
-    fn host_fn_ptr(&self, idx: usize, ty: inkwell::types::FunctionType<'c>) -> PointerValue<'c> {
+    fn host_fn_ptr(&self, idx: Host, ty: inkwell::types::FunctionType<'c>) -> PointerValue<'c> {
         let host = self.st().host.into_pointer_value();
         let slot =
             unsafe { self.b.build_gep(host, &[self.cx.i64_type().const_int(idx as u64, false)], "") }.expect("gep");
@@ -1227,7 +1231,7 @@ impl<'c, 'm> Cg<'c, 'm> {
             }
             NormalSrc::Value(a) => (Self::plain_triple(self.vals[a.0 as usize].as_ref()?)?, NormalKey::Value(a)),
         };
-        let sums = self.light_call(host::DIFFUSE, 1, &n, 6);
+        let sums = self.light_call(Host::Diffuse, 1, &n, 6);
         self.lit_store(&n, &sums, Some(key));
         Some(Val::Num(sums[3..].to_vec()))
     }
@@ -1366,12 +1370,12 @@ impl<'c, 'm> Cg<'c, 'm> {
         let inp = self.b.build_pointer_cast(gs, self.f32t.ptr_type(AddressSpace::default()), "").expect("cast");
         let out = self.out_buf(16, true);
         let mask = self.mask_buf();
-        let fnp = self.host_fn_ptr(host::SPACE, self.rt_fn_type());
+        let fnp = self.host_fn_ptr(Host::Space, self.rt_fn_type());
         self.call_rt_fn(fnp, mask, inp, out, kind | (names.len() as u32) << 2);
         self.unspill(out, 16, true)
     }
 
-    fn host_call(&mut self, idx: usize, aux: u32, args: &[S<'c>], n_out: usize) -> Vec<S<'c>> {
+    fn host_call(&mut self, idx: Host, aux: u32, args: &[S<'c>], n_out: usize) -> Vec<S<'c>> {
         let fnp = self.host_fn_ptr(idx, self.rt_fn_type());
         self.callback(fnp, aux, args, n_out, false)
     }
@@ -1521,7 +1525,8 @@ impl<'c, 'm> Cg<'c, 'm> {
     ///
     /// # Errors
     /// On ops the JIT does not support.
-    pub fn generate(&mut self, module: &ir::Module, param_values: &[Const]) -> R<FunctionValue<'c>> {
+    pub fn generate(&mut self, analyzed: &Analyzed, param_values: &[Const]) -> R<FunctionValue<'c>> {
+        let module = analyzed.module();
         let func = self.func;
         self.inst_repr = func.insts.iter().map(|i| self.repr_of_inst(i)).collect();
         let f32p = self.f32t.ptr_type(AddressSpace::default());
@@ -1662,6 +1667,18 @@ impl<'c, 'm> Cg<'c, 'm> {
             };
             for (k, v) in vals.iter().enumerate().take(3) {
                 self.write_out(out, off + k, *v);
+            }
+        }
+        if self.t.output_params {
+            for (k, off, n) in abi::output_params(module) {
+                let p = &module.params[k];
+                let vals = match self.load_slot(p.slot) {
+                    Val::Num(c) => c,
+                    _ => continue,
+                };
+                for (i, v) in vals.iter().enumerate().take(n) {
+                    self.write_out(out, off + i, *v);
+                }
             }
         }
         self.b.build_return(None).expect("ret");
@@ -2262,7 +2279,7 @@ impl<'c, 'm> Cg<'c, 'm> {
             ],
             false,
         );
-        let fnp = self.host_fn_ptr(host::ILLUMINANCE, illum_ty);
+        let fnp = self.host_fn_ptr(Host::Illuminance, illum_ty);
         let env_i8 = self.b.build_pointer_cast(env, i8p, "").expect("cast");
         let ctx = self.st().ctx;
         self.b
@@ -2292,8 +2309,18 @@ impl<'c, 'm> Cg<'c, 'm> {
         Ok(())
     }
 
+    /// Reads `n` values from a buffer the host wrote (4-byte aligned, like every buffer the
+    /// host passes: a vector load assuming the vector's alignment faults on AVX-512).
     fn read_values(&self, p: PointerValue<'c>, n: usize) -> Vec<S<'c>> {
-        self.unspill(p, n, false)
+        let vals = self.unspill(p, n, false);
+        for s in &vals {
+            for v in std::iter::once(s.v).chain(s.d.into_iter().flat_map(|(x, y)| [x, y])) {
+                if let Some(i) = v.as_instruction_value() {
+                    let _ = i.set_alignment(4);
+                }
+            }
+        }
+        vals
     }
 
     // ---------------------------------------------------------------- instructions
@@ -2844,25 +2871,25 @@ impl<'c> Cg<'c, '_> {
                 if inst.ty.base == BaseType::Color {
                     match space_index(&Self::as_str(&args[0])) {
                         Some(from) => {
-                            Val::Num(self.rt_call(RtKind::Geo, rt::geo::CTRANSFORM | from << 8, &x, 3, false))
+                            Val::Num(self.rt_call(RtKind::Geo, rt::Geo::CTransform as u32 | from << 8, &x, 3, false))
                         }
                         None => Val::Num(x),
                     }
                 } else {
                     let to = self.space_matrix(rt::SPACE_TO_CURRENT, &Self::as_str(&args[0]));
                     let aux = match inst.ty.base {
-                        BaseType::Matrix => rt::geo::MATMUL,
-                        BaseType::Vector => rt::geo::XFORM_VECTOR,
-                        BaseType::Normal => rt::geo::XFORM_NORMAL,
-                        _ => rt::geo::XFORM_POINT,
+                        BaseType::Matrix => rt::Geo::MatMul as u32,
+                        BaseType::Vector => rt::Geo::XformVector as u32,
+                        BaseType::Normal => rt::Geo::XformNormal as u32,
+                        _ => rt::Geo::XformPoint as u32,
                     };
                     // `matrix "name" m` is m · (name → current); a triple is transformed by it.
-                    let all: Vec<S<'c>> = if aux == rt::geo::MATMUL {
+                    let all: Vec<S<'c>> = if aux == rt::Geo::MatMul as u32 {
                         x.into_iter().chain(to).collect()
                     } else {
                         to.into_iter().chain(x).collect()
                     };
-                    let n_out = if aux == rt::geo::MATMUL { 16 } else { 3 };
+                    let n_out = if aux == rt::Geo::MatMul as u32 { 16 } else { 3 };
                     Val::Num(self.rt_call(RtKind::Geo, aux, &all, n_out, false))
                 }
             }
@@ -2883,7 +2910,7 @@ impl<'c> Cg<'c, '_> {
             BinOp::Add | BinOp::Sub | BinOp::Mul | BinOp::Div => {
                 let (a, b) = (self.as_nums(&args[0])?, self.as_nums(&args[1])?);
                 if ta == BaseType::Matrix && tb == BaseType::Matrix && matches!(op, BinOp::Mul | BinOp::Div) {
-                    let aux = if op == BinOp::Mul { rt::geo::MATMUL } else { rt::geo::MATDIV };
+                    let aux = if op == BinOp::Mul { rt::Geo::MatMul as u32 } else { rt::Geo::MatDiv as u32 };
                     let all: Vec<S<'c>> = a.into_iter().chain(b).collect();
                     return Ok(Val::Num(self.rt_call(RtKind::Geo, aux, &all, 16, false)));
                 }
@@ -3004,23 +3031,23 @@ impl<'c> Cg<'c, '_> {
                     .collect(),
             ),
             Builtin::InverseSqrt => Val::Num(nums(self, 0)?.into_iter().map(|x| self.rsqrt(x)).collect()),
-            Builtin::Exp => un_rt(self, rt::un::EXP)?,
-            Builtin::Log if n == 1 => un_rt(self, rt::un::LOG)?,
-            Builtin::Log if n == 2 => bin_rt(self, rt::bin::LOG_BASE, nums(self, 0)?.len())?,
-            Builtin::Sin => un_rt(self, rt::un::SIN)?,
-            Builtin::Cos => un_rt(self, rt::un::COS)?,
-            Builtin::Tan => un_rt(self, rt::un::TAN)?,
-            Builtin::Asin => un_rt(self, rt::un::ASIN)?,
-            Builtin::Acos => un_rt(self, rt::un::ACOS)?,
-            Builtin::Atan if n == 1 => un_rt(self, rt::un::ATAN)?,
-            Builtin::Atan if n == 2 => bin_rt(self, rt::bin::ATAN2, 1)?,
+            Builtin::Exp => un_rt(self, rt::Un::Exp as u32)?,
+            Builtin::Log if n == 1 => un_rt(self, rt::Un::Log as u32)?,
+            Builtin::Log if n == 2 => bin_rt(self, rt::Bin::LogBase as u32, nums(self, 0)?.len())?,
+            Builtin::Sin => un_rt(self, rt::Un::Sin as u32)?,
+            Builtin::Cos => un_rt(self, rt::Un::Cos as u32)?,
+            Builtin::Tan => un_rt(self, rt::Un::Tan as u32)?,
+            Builtin::Asin => un_rt(self, rt::Un::Asin as u32)?,
+            Builtin::Acos => un_rt(self, rt::Un::Acos as u32)?,
+            Builtin::Atan if n == 1 => un_rt(self, rt::Un::Atan as u32)?,
+            Builtin::Atan if n == 2 => bin_rt(self, rt::Bin::Atan2 as u32, 1)?,
             Builtin::Radians => Val::Num(
                 nums(self, 0)?.into_iter().map(|s| self.mul(s, self.fc(std::f64::consts::PI / 180.0))).collect(),
             ),
             Builtin::Degrees => Val::Num(
                 nums(self, 0)?.into_iter().map(|s| self.mul(s, self.fc(180.0 / std::f64::consts::PI))).collect(),
             ),
-            Builtin::Pow if n == 2 => bin_rt(self, rt::bin::POW, nums(self, 0)?.len())?,
+            Builtin::Pow if n == 2 => bin_rt(self, rt::Bin::Pow as u32, nums(self, 0)?.len())?,
             Builtin::Mod if n == 2 => {
                 let all = vec![nums(self, 0)?, nums(self, 1)?];
                 let w = all[0].len();
@@ -3065,7 +3092,7 @@ impl<'c> Cg<'c, '_> {
             Builtin::Normalize => {
                 let a = nums(self, 0)?;
                 if a.iter().any(|s| s.r == Repr::D) {
-                    Val::Num(self.rt_call(RtKind::Geo, rt::geo::NORMALIZE, &a, 3, false))
+                    Val::Num(self.rt_call(RtKind::Geo, rt::Geo::Normalize as u32, &a, 3, false))
                 } else {
                     Val::Num(self.normalize(&a))
                 }
@@ -3083,7 +3110,7 @@ impl<'c> Cg<'c, '_> {
             Builtin::Refract => {
                 let a = flat_args(self, 0..3)?;
                 if a.iter().any(|s| s.r == Repr::D) {
-                    Val::Num(self.rt_call(RtKind::Geo, rt::geo::REFRACT, &a, 3, false))
+                    Val::Num(self.rt_call(RtKind::Geo, rt::Geo::Refract as u32, &a, 3, false))
                 } else {
                     Val::Num(self.refract(&a[0..3], &a[3..6], a[6]))
                 }
@@ -3091,7 +3118,7 @@ impl<'c> Cg<'c, '_> {
             Builtin::Fresnel => {
                 let a = flat_args(self, 0..3)?;
                 let r = if a.iter().any(|s| s.r == Repr::D) {
-                    self.rt_call(RtKind::Geo, rt::geo::FRESNEL, &a, 8, false)
+                    self.rt_call(RtKind::Geo, rt::Geo::Fresnel as u32, &a, 8, false)
                 } else {
                     self.fresnel(&a[0..3], &a[3..6], a[6])
                 };
@@ -3108,20 +3135,22 @@ impl<'c> Cg<'c, '_> {
                 return Ok(all);
             }
             Builtin::PtLineD => {
-                Val::Num(self.rt_call(RtKind::Geo, rt::geo::PTLINED, &flat_args(self, 0..3)?, 1, false))
+                Val::Num(self.rt_call(RtKind::Geo, rt::Geo::PtLineD as u32, &flat_args(self, 0..3)?, 1, false))
             }
             Builtin::Rotate if aty(0).is_triple() => {
-                Val::Num(self.rt_call(RtKind::Geo, rt::geo::ROTATE, &flat_args(self, 0..4)?, 3, false))
+                Val::Num(self.rt_call(RtKind::Geo, rt::Geo::Rotate as u32, &flat_args(self, 0..4)?, 3, false))
             }
             Builtin::Rotate => {
-                Val::Num(self.rt_call(RtKind::Geo, rt::geo::ROTATE_M, &flat_args(self, 0..3)?, 16, false))
+                Val::Num(self.rt_call(RtKind::Geo, rt::Geo::RotateM as u32, &flat_args(self, 0..3)?, 16, false))
             }
             Builtin::Translate => {
-                Val::Num(self.rt_call(RtKind::Geo, rt::geo::TRANSLATE, &flat_args(self, 0..2)?, 16, false))
+                Val::Num(self.rt_call(RtKind::Geo, rt::Geo::Translate as u32, &flat_args(self, 0..2)?, 16, false))
             }
-            Builtin::Scale => Val::Num(self.rt_call(RtKind::Geo, rt::geo::SCALE_M, &flat_args(self, 0..2)?, 16, false)),
+            Builtin::Scale => {
+                Val::Num(self.rt_call(RtKind::Geo, rt::Geo::ScaleM as u32, &flat_args(self, 0..2)?, 16, false))
+            }
             Builtin::SpecularBrdf => {
-                Val::Num(self.rt_call(RtKind::Geo, rt::geo::SPECULARBRDF, &flat_args(self, 0..4)?, 3, false))
+                Val::Num(self.rt_call(RtKind::Geo, rt::Geo::SpecularBrdf as u32, &flat_args(self, 0..4)?, 3, false))
             }
             Builtin::XComp | Builtin::YComp | Builtin::ZComp => {
                 let c = match builtin {
@@ -3185,9 +3214,9 @@ impl<'c> Cg<'c, '_> {
                 match (0..n).find(|&i| aty(i) == BaseType::Matrix) {
                     Some(mi) => {
                         let aux = match (builtin, inst.ty.base) {
-                            (Builtin::VTransform, _) | (_, BaseType::Vector) => rt::geo::XFORM_VECTOR,
-                            (Builtin::NTransform, _) | (_, BaseType::Normal) => rt::geo::XFORM_NORMAL,
-                            _ => rt::geo::XFORM_POINT,
+                            (Builtin::VTransform, _) | (_, BaseType::Vector) => rt::Geo::XformVector as u32,
+                            (Builtin::NTransform, _) | (_, BaseType::Normal) => rt::Geo::XformNormal as u32,
+                            _ => rt::Geo::XformPoint as u32,
                         };
                         let mut x = x;
                         if (0..n).any(|i| aty(i) == BaseType::String) {
@@ -3202,9 +3231,9 @@ impl<'c> Cg<'c, '_> {
                     }
                     None => {
                         let aux = match (builtin, inst.ty.base) {
-                            (Builtin::VTransform, _) | (_, BaseType::Vector) => rt::geo::XFORM_VECTOR,
-                            (Builtin::NTransform, _) | (_, BaseType::Normal) => rt::geo::XFORM_NORMAL,
-                            _ => rt::geo::XFORM_POINT,
+                            (Builtin::VTransform, _) | (_, BaseType::Vector) => rt::Geo::XformVector as u32,
+                            (Builtin::NTransform, _) | (_, BaseType::Normal) => rt::Geo::XformNormal as u32,
+                            _ => rt::Geo::XformPoint as u32,
                         };
                         let mut all = if n == 3 {
                             let names =
@@ -3225,18 +3254,18 @@ impl<'c> Cg<'c, '_> {
                 let to = space_index(&Self::as_str(&args[spaces - 1]));
                 match (from, to) {
                     (Some(f), Some(t)) => {
-                        Val::Num(self.rt_call(RtKind::Geo, rt::geo::CTRANSFORM | f << 8 | t << 16, &c, 3, false))
+                        Val::Num(self.rt_call(RtKind::Geo, rt::Geo::CTransform as u32 | f << 8 | t << 16, &c, 3, false))
                     }
                     _ => Val::Num(c),
                 }
             }
             Builtin::Determinant => {
-                Val::Num(self.rt_call(RtKind::Geo, rt::geo::DETERMINANT, &nums(self, 0)?, 1, false))
+                Val::Num(self.rt_call(RtKind::Geo, rt::Geo::Determinant as u32, &nums(self, 0)?, 1, false))
             }
             Builtin::Du | Builtin::Dv => {
                 let x = nums(self, 0)?;
                 let w = x.len() as u32;
-                let idx = if builtin == Builtin::Du { host::DU } else { host::DV };
+                let idx = if builtin == Builtin::Du { Host::Du } else { Host::Dv };
                 Val::Num(self.host_call(idx, w, &x, w as usize))
             }
             Builtin::Deriv => {
@@ -3244,13 +3273,13 @@ impl<'c> Cg<'c, '_> {
                 let w = x.len() as u32;
                 let mut all = x;
                 all.extend(nums(self, 1)?);
-                Val::Num(self.host_call(host::DERIV, w, &all, w as usize))
+                Val::Num(self.host_call(Host::Deriv, w, &all, w as usize))
             }
-            Builtin::Area => Val::Num(self.rt_call(RtKind::Geo, rt::geo::AREA, &nums(self, 0)?, 1, true)),
-            Builtin::CalculateNormal => Val::Num(self.host_call(host::CALCNORMAL, 0, &nums(self, 0)?, 3)),
+            Builtin::Area => Val::Num(self.rt_call(RtKind::Geo, rt::Geo::Area as u32, &nums(self, 0)?, 1, true)),
+            Builtin::CalculateNormal => Val::Num(self.host_call(Host::CalcNormal, 0, &nums(self, 0)?, 3)),
             Builtin::FilterWidth => {
                 let x = nums(self, 0)?;
-                let aux = if x.len() == 3 { rt::geo::FILTERWIDTH_P } else { rt::geo::FILTERWIDTH };
+                let aux = if x.len() == 3 { rt::Geo::FilterWidthP as u32 } else { rt::Geo::FilterWidth as u32 };
                 Val::Num(self.rt_call(RtKind::Geo, aux, &x, 1, true))
             }
             Builtin::FilterStep => {
@@ -3262,16 +3291,16 @@ impl<'c> Cg<'c, '_> {
                     let (e, x) = (nums(self, 0)?[0], nums(self, 1)?[0]);
                     Val::Num(vec![self.step(e, x)])
                 } else if nnum >= 3 {
-                    Val::Num(self.rt_call(RtKind::Bin, rt::bin::FILTERSTEP3, &flat_args(self, 0..3)?, 1, true))
+                    Val::Num(self.rt_call(RtKind::Bin, rt::Bin::FilterStep3 as u32, &flat_args(self, 0..3)?, 1, true))
                 } else {
-                    Val::Num(self.rt_call(RtKind::Bin, rt::bin::FILTERSTEP, &flat_args(self, 0..2)?, 1, true))
+                    Val::Num(self.rt_call(RtKind::Bin, rt::Bin::FilterStep as u32, &flat_args(self, 0..2)?, 1, true))
                 }
             }
             Builtin::FilteredPulse => {
                 let (e0, e1, x) = (nums(self, 0)?[0], nums(self, 1)?[0], nums(self, 2)?[0]);
                 if [e0, e1, x].iter().any(|s| s.r == Repr::D) {
-                    let a = self.rt_call(RtKind::Bin, rt::bin::FILTERSTEP, &[e0, x], 1, true)[0];
-                    let b = self.rt_call(RtKind::Bin, rt::bin::FILTERSTEP, &[e1, x], 1, true)[0];
+                    let a = self.rt_call(RtKind::Bin, rt::Bin::FilterStep as u32, &[e0, x], 1, true)[0];
+                    let b = self.rt_call(RtKind::Bin, rt::Bin::FilterStep as u32, &[e1, x], 1, true)[0];
                     Val::Num(vec![self.sub(a, b)])
                 } else {
                     // No derivatives: the filter width is 0 and the pulse is a difference of steps.
@@ -3292,30 +3321,31 @@ impl<'c> Cg<'c, '_> {
                 if self.t.inline_noise || kind == noise::NoiseKind::Cell {
                     Val::Num(self.noise_inline(kind, &coords, rw))
                 } else {
-                    let k = match kind {
-                        noise::NoiseKind::Unsigned => rt::nkind::NOISE,
-                        noise::NoiseKind::Signed => rt::nkind::SNOISE,
-                        noise::NoiseKind::Cell => rt::nkind::CELL,
+                    let kind = match kind {
+                        noise::NoiseKind::Unsigned => rt::NoiseOp::Noise,
+                        noise::NoiseKind::Signed => rt::NoiseOp::SNoise,
+                        noise::NoiseKind::Cell => rt::NoiseOp::Cell,
                     };
-                    Val::Num(self.rt_call(RtKind::Noise, k | dims << 4 | (rw as u32) << 8, &coords, rw, false))
+                    let aux = rt::NoiseSel { kind, dims, out: rw as u32, extra: 0 }.encode();
+                    Val::Num(self.rt_call(RtKind::Noise, aux, &coords, rw, false))
                 }
             }
             Builtin::PNoise | Builtin::PSNoise => {
                 let half = n / 2;
                 let dims = noise_dims(0, half).ok_or_else(|| CgError(format!("{builtin} arguments")))?;
-                let kind = if builtin == Builtin::PNoise { rt::nkind::PNOISE } else { rt::nkind::PSNOISE };
-                let aux = kind | dims << 4 | (rw as u32) << 8;
+                let kind = if builtin == Builtin::PNoise { rt::NoiseOp::PNoise } else { rt::NoiseOp::PSNoise };
+                let aux = rt::NoiseSel { kind, dims, out: rw as u32, extra: 0 }.encode();
                 Val::Num(self.rt_call(RtKind::Noise, aux, &flat_args(self, 0..n)?, rw, false))
             }
             Builtin::Fbm | Builtin::Turbulence => {
                 let dims = if aty(0).is_triple() { 3 } else { 1 };
                 let used = 1;
-                let kind = if builtin == Builtin::Fbm { rt::nkind::FBM } else { rt::nkind::TURBULENCE };
+                let kind = if builtin == Builtin::Fbm { rt::NoiseOp::Fbm } else { rt::NoiseOp::Turbulence };
                 let extra = (n - used) as u32;
-                let aux = kind | dims << 4 | 1 << 8 | extra << 12;
+                let aux = rt::NoiseSel { kind, dims, out: 1, extra }.encode();
                 Val::Num(self.rt_call(RtKind::Noise, aux, &flat_args(self, 0..n)?, 1, false))
             }
-            Builtin::Random => Val::Num(self.host_call(host::RANDOM, rw as u32, &[], rw)),
+            Builtin::Random => Val::Num(self.host_call(Host::Random, rw as u32, &[], rw)),
             Builtin::Spline => {
                 let basis = aty(0) == BaseType::String;
                 let first = usize::from(basis);
@@ -3342,18 +3372,18 @@ impl<'c> Cg<'c, '_> {
                 let aux = nk as u32 | bi << 8 | (w as u32) << 16;
                 Val::Num(self.rt_call(RtKind::Spline, aux, &all, w, false))
             }
-            Builtin::Ambient => Val::Num(self.light_call(host::AMBIENT, 0, &[], 3)),
-            Builtin::Diffuse => Val::Num(self.light_call(host::DIFFUSE, 0, &nums(self, 0)?, 3)),
+            Builtin::Ambient => Val::Num(self.light_call(Host::Ambient, 0, &[], 3)),
+            Builtin::Diffuse => Val::Num(self.light_call(Host::Diffuse, 0, &nums(self, 0)?, 3)),
             Builtin::Specular => {
                 let args = flat_args(self, 0..3)?;
                 match self.lit_sums(&args) {
                     // specular ++ diffuse [++ ambient]; the call site keeps the sums.
-                    Some(k) => Val::Num(self.light_call(host::SPECULAR, k, &args, 3 + 3 * k as usize)),
-                    None => Val::Num(self.host_call(host::SPECULAR, 0, &args, 3)),
+                    Some(k) => Val::Num(self.light_call(Host::Specular, k, &args, 3 + 3 * k as usize)),
+                    None => Val::Num(self.host_call(Host::Specular, 0, &args, 3)),
                 }
             }
-            Builtin::Phong => Val::Num(self.host_call(host::PHONG, 0, &flat_args(self, 0..3)?, 3)),
-            Builtin::Trace => Val::Num(self.host_call(host::TRACE, 0, &flat_args(self, 0..2)?, 3)),
+            Builtin::Phong => Val::Num(self.host_call(Host::Phong, 0, &flat_args(self, 0..3)?, 3)),
+            Builtin::Trace => Val::Num(self.host_call(Host::Trace, 0, &flat_args(self, 0..2)?, 3)),
             Builtin::Concat => Val::Str(vec![args.iter().map(Self::as_str).collect()]),
             Builtin::Printf => Val::Void,
             Builtin::Match => {

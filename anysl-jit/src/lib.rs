@@ -28,7 +28,7 @@ pub mod rt;
 mod shader;
 
 pub use anysl_rsl as rsl;
-pub use shader::{variant_of, JitShader};
+pub use shader::{variant_of, JitShader, PointOutputs};
 
 use abi::{PointsFn, ShadeFn};
 use anysl_ad::Dual;
@@ -185,6 +185,10 @@ pub struct JitOptions {
     /// pairs of runs: plastic +18 %, checker +12 %, granite +5 % over level 2) and are within
     /// the noise at four 8-lane ones.
     pub points_opt_level: u32,
+    /// Also write the numeric output parameters after the standard outputs
+    /// ([`abi::output_params`]), for tools that read them ([`JitShader::eval_point`]); the
+    /// caller's output buffer must have room for them.
+    pub output_params: bool,
 }
 
 impl JitOptions {
@@ -199,6 +203,7 @@ impl JitOptions {
             specialize: true,
             inline_noise: false,
             points_opt_level: 3,
+            output_params: false,
         }
     }
 }
@@ -308,8 +313,8 @@ fn count_insts(m: &inkwell::module::Module<'_>) -> usize {
 /// Runs the IR passes on a lowered module for one instance: specialization of uniform
 /// parameters to `values` (when `specialize`), folding, DCE and the analyses.
 #[must_use]
-pub fn ir_passes(module: &Module, values: &[Const], specialize: bool) -> (Module, anysl_rsl::passes::PassReport) {
-    let mut m = module.clone();
+pub fn ir_passes(module: &Module, values: &[Const], specialize: bool) -> anysl_rsl::passes::Analyzed {
+    let m = module.clone();
     let spec: Vec<(String, Const)> = if specialize {
         m.params.iter().zip(values).map(|(p, v)| (p.name.clone(), v.clone())).collect()
     } else {
@@ -317,8 +322,7 @@ pub fn ir_passes(module: &Module, values: &[Const], specialize: bool) -> (Module
     };
     let opts =
         anysl_rsl::passes::PassOptions { specialize: spec, specialize_defaults: specialize, ..Default::default() };
-    let report = anysl_rsl::passes::optimize(&mut m, &opts);
-    (m, report)
+    anysl_rsl::passes::optimize(m, &opts)
 }
 
 /// The LLVM pass pipeline of optimization level `level` (0–3). Every target-library function
@@ -452,8 +456,9 @@ fn build(
     init_llvm();
     let mut stats = CompileStats::default();
     let t0 = Instant::now();
-    let (m, report) = ir_passes(module, values, opts.specialize);
-    for (s, n) in &report.stages {
+    let analyzed = ir_passes(module, values, opts.specialize);
+    let m = analyzed.module();
+    for (s, n) in &analyzed.report().stages {
         stats.insts.push((format!("ir-{s}"), *n));
     }
     stats.times_ms.push(("ir-passes", t0.elapsed().as_secs_f64() * 1e3));
@@ -469,6 +474,7 @@ fn build(
         threaded: opts.threaded,
         inline_noise: opts.inline_noise,
         runtime_params: !opts.specialize,
+        output_params: opts.output_params,
     };
     let mut cg = Cg::new(cref, &m.func, target, variant.rt_resolver(), Variant::F32.rt_resolver());
     let (cpu, features) = if opts.host_cpu {
@@ -485,7 +491,7 @@ fn build(
         cg.fn_attrs.push(("prefer-vector-width".into(), bits.clone()));
         cg.fn_attrs.push(("min-legal-vector-width".into(), bits));
     }
-    let shade = cg.generate(&m, values).map_err(|e| JitError(e.0))?;
+    let shade = cg.generate(&analyzed, values).map_err(|e| JitError(e.0))?;
     let entry = match points {
         Some(p) => {
             cg.generate_points(shade, p.varying, p.outputs)?;

@@ -92,87 +92,169 @@ impl<F: JitFloat> Out<F> {
     }
 }
 
-/// Unary functions (`aux` of [`rt_un`]).
-#[allow(missing_docs)]
-pub mod un {
-    pub const SIN: u32 = 0;
-    pub const COS: u32 = 1;
-    pub const TAN: u32 = 2;
-    pub const ASIN: u32 = 3;
-    pub const ACOS: u32 = 4;
-    pub const ATAN: u32 = 5;
-    pub const EXP: u32 = 6;
-    pub const LOG: u32 = 7;
-    pub const SIGN: u32 = 8;
-    pub const ROUND: u32 = 9;
-    pub const RADIANS: u32 = 10;
-    pub const DEGREES: u32 = 11;
-    pub const INVSQRT: u32 = 12;
-    pub const SQRT: u32 = 13;
-    pub const FLOOR: u32 = 14;
-    pub const CEIL: u32 = 15;
-    pub const ABS: u32 = 16;
-    pub const NOISE_SAFE: u32 = 17;
+/// A `#[repr(u32)]` selector: the `aux` values of one runtime family. `from_aux` decodes a
+/// selector (the functions `match` on it with no catch-all arm); `special_addr` is the copy
+/// of the family's function compiled for one selector ([`rt_addr`]).
+macro_rules! selector {
+    ($(#[$doc:meta])* $name:ident, $special:ident { $($v:ident = $n:literal,)* }) => {
+        $(#[$doc])*
+        #[allow(missing_docs)]
+        #[repr(u32)]
+        #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+        pub enum $name {
+            $($v = $n,)*
+        }
+
+        impl $name {
+            /// Every selector of the family.
+            pub const ALL: &'static [$name] = &[$($name::$v,)*];
+
+            /// The selector `aux` encodes (`None` for a value no selector has).
+            #[must_use]
+            pub const fn from_aux(aux: u32) -> Option<Self> {
+                match aux {
+                    $($n => Some(Self::$v),)*
+                    _ => None,
+                }
+            }
+
+            /// The family's function compiled for selector `aux`, when `aux` is one.
+            fn special_addr<F: JitFloat>(aux: u32) -> Option<usize> {
+                match aux {
+                    $($n => Some($special::<F, $n> as RtFn as usize),)*
+                    _ => None,
+                }
+            }
+        }
+    };
 }
 
-/// Binary and ternary functions (`aux` of [`rt_bin`]).
+selector!(
+    /// Unary functions (`aux` of [`rt_un`]).
+    Un, rt_un_k {
+        Sin = 0,
+        Cos = 1,
+        Tan = 2,
+        Asin = 3,
+        Acos = 4,
+        Atan = 5,
+        Exp = 6,
+        Log = 7,
+        Sign = 8,
+        Round = 9,
+        Radians = 10,
+        Degrees = 11,
+        InvSqrt = 12,
+        Sqrt = 13,
+        Floor = 14,
+        Ceil = 15,
+        Abs = 16,
+    }
+);
+
+selector!(
+    /// Binary and ternary functions (`aux` of [`rt_bin`]).
+    Bin, rt_bin_k {
+        Pow = 0,
+        Atan2 = 1,
+        LogBase = 2,
+        Mod = 3,
+        Min = 4,
+        Max = 5,
+        Step = 6,
+        SmoothStep = 7,
+        Clamp = 8,
+        Mix = 9,
+        FilterStep = 10,
+        FilterStep3 = 11,
+    }
+);
+
+selector!(
+    /// Geometric functions (`aux & 0xff` of [`rt_geo`]); `CTransform` takes
+    /// `aux = CTransform | from << 8 | to << 16` (indices into [`COLOR_SPACES`]).
+    Geo, rt_geo_k {
+        Length = 0,
+        Normalize = 1,
+        Distance = 2,
+        FaceForward = 3,
+        Reflect = 4,
+        Refract = 5,
+        Fresnel = 6,
+        PtLineD = 7,
+        Rotate = 8,
+        SpecularBrdf = 9,
+        Area = 10,
+        FilterWidthP = 11,
+        FilterWidth = 12,
+        MatMul = 13,
+        MatDiv = 14,
+        Determinant = 15,
+        Translate = 17,
+        RotateM = 18,
+        ScaleM = 19,
+        XformPoint = 20,
+        XformVector = 21,
+        XformNormal = 22,
+        CTransform = 23,
+    }
+);
+
+/// Noise kinds (the `kind` of a [`NoiseSel`]).
 #[allow(missing_docs)]
-pub mod bin {
-    pub const POW: u32 = 0;
-    pub const ATAN2: u32 = 1;
-    pub const LOG_BASE: u32 = 2;
-    pub const MOD: u32 = 3;
-    pub const MIN: u32 = 4;
-    pub const MAX: u32 = 5;
-    pub const STEP: u32 = 6;
-    pub const SMOOTHSTEP: u32 = 7;
-    pub const CLAMP: u32 = 8;
-    pub const MIX: u32 = 9;
-    pub const FILTERSTEP: u32 = 10;
-    pub const FILTERSTEP3: u32 = 11;
+#[repr(u32)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum NoiseOp {
+    Noise = 0,
+    SNoise = 1,
+    Cell = 2,
+    PNoise = 3,
+    PSNoise = 4,
+    Fbm = 5,
+    Turbulence = 6,
 }
 
-/// Geometric functions (`aux` of [`rt_geo`]).
-#[allow(missing_docs)]
-pub mod geo {
-    pub const LENGTH: u32 = 0;
-    pub const NORMALIZE: u32 = 1;
-    pub const DISTANCE: u32 = 2;
-    pub const FACEFORWARD: u32 = 3;
-    pub const REFLECT: u32 = 4;
-    pub const REFRACT: u32 = 5;
-    pub const FRESNEL: u32 = 6;
-    pub const PTLINED: u32 = 7;
-    pub const ROTATE: u32 = 8;
-    pub const SPECULARBRDF: u32 = 9;
-    pub const AREA: u32 = 10;
-    pub const FILTERWIDTH_P: u32 = 11;
-    pub const FILTERWIDTH: u32 = 12;
-    pub const MATMUL: u32 = 13;
-    pub const MATDIV: u32 = 14;
-    pub const DETERMINANT: u32 = 15;
-    pub const INVERSE: u32 = 16;
-    pub const TRANSLATE: u32 = 17;
-    pub const ROTATE_M: u32 = 18;
-    pub const SCALE_M: u32 = 19;
-    pub const XFORM_POINT: u32 = 20;
-    pub const XFORM_VECTOR: u32 = 21;
-    pub const XFORM_NORMAL: u32 = 22;
-    /// `aux = CTRANSFORM | from << 8 | to << 16` (indices into [`super::COLOR_SPACES`]).
-    pub const CTRANSFORM: u32 = 23;
+impl NoiseOp {
+    /// Every kind.
+    pub const ALL: [NoiseOp; 7] =
+        [Self::Noise, Self::SNoise, Self::Cell, Self::PNoise, Self::PSNoise, Self::Fbm, Self::Turbulence];
 }
 
-/// Noise kinds (`aux & 0xf` of [`rt_noise`]; `aux >> 4 & 0xf` = dimensions, `aux >> 8` =
-/// output components; fBm: `aux >> 12` = number of octave/lacunarity/gain arguments).
-#[allow(missing_docs)]
-pub mod nkind {
-    pub const NOISE: u32 = 0;
-    pub const SNOISE: u32 = 1;
-    pub const CELL: u32 = 2;
-    pub const PNOISE: u32 = 3;
-    pub const PSNOISE: u32 = 4;
-    pub const FBM: u32 = 5;
-    pub const TURBULENCE: u32 = 6;
+/// The selector of a [`rt_noise`] call: `aux = kind | dims << 4 | out << 8 | extra << 12`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct NoiseSel {
+    /// The function.
+    pub kind: NoiseOp,
+    /// Dimensions of the domain, 1–4.
+    pub dims: u32,
+    /// Output components, 1 or 3.
+    pub out: u32,
+    /// fBm and turbulence: how many of the octaves/lacunarity/gain arguments follow, 0–3.
+    pub extra: u32,
+}
+
+impl NoiseSel {
+    /// The `aux` value.
+    #[must_use]
+    pub const fn encode(self) -> u32 {
+        self.kind as u32 | self.dims << 4 | self.out << 8 | self.extra << 12
+    }
+
+    /// The selector `aux` encodes (`None` for an unknown kind).
+    #[must_use]
+    pub const fn decode(aux: u32) -> Option<Self> {
+        let kind = match aux & 0xf {
+            0 => NoiseOp::Noise,
+            1 => NoiseOp::SNoise,
+            2 => NoiseOp::Cell,
+            3 => NoiseOp::PNoise,
+            4 => NoiseOp::PSNoise,
+            5 => NoiseOp::Fbm,
+            6 => NoiseOp::Turbulence,
+            _ => return None,
+        };
+        Some(Self { kind, dims: (aux >> 4) & 0xf, out: (aux >> 8) & 0xf, extra: (aux >> 12) & 0xf })
+    }
 }
 
 /// Colour-space names by index (for `aux`).
@@ -220,29 +302,30 @@ rt_family!(
 #[inline(always)]
 unsafe fn un_op<F: JitFloat>(inp: *const f32, out: *mut f32, aux: u32) {
     let x = In::<F>::new(inp).f();
-    let r = match aux {
-        un::SIN => x.sin(),
-        un::COS => x.cos(),
-        un::TAN => x.tan(),
-        un::ASIN => x.asin(),
-        un::ACOS => x.acos(),
-        un::ATAN => x.atan(),
-        un::EXP => x.exp(),
-        un::LOG => x.ln(),
-        un::SIGN => sign(x),
-        un::ROUND => x.round(),
-        un::RADIANS => radians(x),
-        un::DEGREES => degrees(x),
-        un::INVSQRT => inversesqrt(x),
-        un::SQRT => x.sqrt(),
-        un::FLOOR => x.floor(),
-        un::CEIL => x.ceil(),
-        _ => x.abs(),
+    let r = match Un::from_aux(aux) {
+        Some(Un::Sin) => x.sin(),
+        Some(Un::Cos) => x.cos(),
+        Some(Un::Tan) => x.tan(),
+        Some(Un::Asin) => x.asin(),
+        Some(Un::Acos) => x.acos(),
+        Some(Un::Atan) => x.atan(),
+        Some(Un::Exp) => x.exp(),
+        Some(Un::Log) => x.ln(),
+        Some(Un::Sign) => sign(x),
+        Some(Un::Round) => x.round(),
+        Some(Un::Radians) => radians(x),
+        Some(Un::Degrees) => degrees(x),
+        Some(Un::InvSqrt) => inversesqrt(x),
+        Some(Un::Sqrt) => x.sqrt(),
+        Some(Un::Floor) => x.floor(),
+        Some(Un::Ceil) => x.ceil(),
+        Some(Un::Abs) => x.abs(),
+        None => F::c(f64::NAN),
     };
     Out::<F>::new(out).f(r);
 }
 
-/// std's `f32` sine, cosine or tangent (`aux & 0xff`: [`un::SIN`], [`un::COS`], [`un::TAN`])
+/// std's `f32` sine, cosine or tangent (`aux & 0xff`: [`Un::Sin`], [`Un::Cos`], [`Un::Tan`])
 /// of the lanes that `mask` selects, out of `aux >> 8` lanes (the others are copied): the path
 /// of the inline trigonometry for arguments beyond the vector reduction's range, as the
 /// SIMD types take it.
@@ -250,10 +333,11 @@ unsafe fn un_op<F: JitFloat>(inp: *const f32, out: *mut f32, aux: u32) {
 /// # Safety
 /// `mask`, `inp` and `out` each hold `aux >> 8` lanes.
 pub unsafe extern "C" fn rt_trig_lanes(_: *mut c_void, mask: *const u32, inp: *const f32, out: *mut f32, aux: u32) {
-    let f: fn(f32) -> f32 = match aux & 0xff {
-        un::SIN => f32::sin,
-        un::COS => f32::cos,
-        _ => f32::tan,
+    let f: fn(f32) -> f32 = match Un::from_aux(aux & 0xff) {
+        Some(Un::Sin) => f32::sin,
+        Some(Un::Cos) => f32::cos,
+        Some(Un::Tan) => f32::tan,
+        _ => |_| f32::NAN,
     };
     for i in 0..(aux >> 8) as usize {
         let x = *inp.add(i);
@@ -271,19 +355,19 @@ unsafe fn bin_op<F: JitFloat>(inp: *const f32, out: *mut f32, aux: u32) {
     let mut i = In::<F>::new(inp);
     let a = i.f();
     let b = i.f();
-    let r = match aux {
-        bin::POW => a.pow(b),
-        bin::ATAN2 => a.atan2(b),
-        bin::LOG_BASE => log_base(a, b),
-        bin::MOD => fmod(a, b),
-        bin::MIN => a.min(b),
-        bin::MAX => a.max(b),
-        bin::STEP => step(a, b),
-        bin::SMOOTHSTEP => smoothstep(a, b, i.f()),
-        bin::CLAMP => clamp(a, b, i.f()),
-        bin::MIX => mix(a, b, i.f()),
-        bin::FILTERSTEP => filterstep(a, b),
-        _ => {
+    let r = match Bin::from_aux(aux) {
+        Some(Bin::Pow) => a.pow(b),
+        Some(Bin::Atan2) => a.atan2(b),
+        Some(Bin::LogBase) => log_base(a, b),
+        Some(Bin::Mod) => fmod(a, b),
+        Some(Bin::Min) => a.min(b),
+        Some(Bin::Max) => a.max(b),
+        Some(Bin::Step) => step(a, b),
+        Some(Bin::SmoothStep) => smoothstep(a, b, i.f()),
+        Some(Bin::Clamp) => clamp(a, b, i.f()),
+        Some(Bin::Mix) => mix(a, b, i.f()),
+        Some(Bin::FilterStep) => filterstep(a, b),
+        Some(Bin::FilterStep3) => {
             // filterstep(edge, s0, s1): box over [s0, s1] (as the interpreter).
             let (e, s0, s1) = (a, b, i.f());
             let lo = s0.min(s1);
@@ -291,6 +375,7 @@ unsafe fn bin_op<F: JitFloat>(inp: *const f32, out: *mut f32, aux: u32) {
             let t = clamp((lo + wdt - e) / wdt.max(F::c(1e-30)), F::c(0.0), F::c(1.0));
             F::select(wdt.gt(F::c(0.0)), t, step(e, s0))
         }
+        None => F::c(f64::NAN),
     };
     Out::<F>::new(out).f(r);
 }
@@ -304,26 +389,26 @@ rt_family!(
 unsafe fn geo_op<F: JitFloat>(inp: *const f32, out: *mut f32, aux: u32) {
     let mut i = In::<F>::new(inp);
     let mut o = Out::<F>::new(out);
-    match aux & 0xff {
-        geo::LENGTH => o.f(i.v3().length()),
-        geo::NORMALIZE => o.v3(i.v3().normalize()),
-        geo::DISTANCE => {
+    match Geo::from_aux(aux & 0xff) {
+        Some(Geo::Length) => o.f(i.v3().length()),
+        Some(Geo::Normalize) => o.v3(i.v3().normalize()),
+        Some(Geo::Distance) => {
             let a = i.v3();
             o.f(distance(a, i.v3()));
         }
-        geo::FACEFORWARD => {
+        Some(Geo::FaceForward) => {
             let (n, ii) = (i.v3(), i.v3());
             o.v3(faceforward(n, ii, i.v3()));
         }
-        geo::REFLECT => {
+        Some(Geo::Reflect) => {
             let a = i.v3();
             o.v3(reflect(a, i.v3()));
         }
-        geo::REFRACT => {
+        Some(Geo::Refract) => {
             let (a, n) = (i.v3(), i.v3());
             o.v3(refract(a, n, i.f()));
         }
-        geo::FRESNEL => {
+        Some(Geo::Fresnel) => {
             let (a, n) = (i.v3(), i.v3());
             let r = fresnel(a, n, i.f());
             o.f(r.kr);
@@ -331,56 +416,55 @@ unsafe fn geo_op<F: JitFloat>(inp: *const f32, out: *mut f32, aux: u32) {
             o.v3(r.r);
             o.v3(r.t);
         }
-        geo::PTLINED => {
+        Some(Geo::PtLineD) => {
             let (a, b) = (i.v3(), i.v3());
             o.f(ptlined(a, b, i.v3()));
         }
-        geo::ROTATE => {
+        Some(Geo::Rotate) => {
             let (q, ang, p0) = (i.v3(), i.f(), i.v3());
             o.v3(rotate(q, ang, p0, i.v3()));
         }
-        geo::SPECULARBRDF => {
+        Some(Geo::SpecularBrdf) => {
             let (l, n, v) = (i.v3(), i.v3(), i.v3());
             let r = specularbrdf(l, n, v, i.f());
             o.v3(Vec3::splat(r));
         }
-        geo::AREA => o.f(area(i.v3())),
-        geo::FILTERWIDTH_P => o.f(filterwidth_point(i.v3())),
-        geo::FILTERWIDTH => o.f(filterwidth(i.f())),
-        geo::MATMUL | geo::MATDIV => {
+        Some(Geo::Area) => o.f(area(i.v3())),
+        Some(Geo::FilterWidthP) => o.f(filterwidth_point(i.v3())),
+        Some(Geo::FilterWidth) => o.f(filterwidth(i.f())),
+        Some(Geo::MatMul | Geo::MatDiv) => {
             let a = i.m4();
             let b = i.m4();
-            let b = if aux & 0xff == geo::MATDIV { b.inverse() } else { b };
+            let b = if aux & 0xff == Geo::MatDiv as u32 { b.inverse() } else { b };
             o.m4(&(a * b));
         }
-        geo::DETERMINANT => o.f(i.m4().determinant()),
-        geo::INVERSE => o.m4(&i.m4().inverse()),
-        geo::TRANSLATE => {
+        Some(Geo::Determinant) => o.f(i.m4().determinant()),
+        Some(Geo::Translate) => {
             let m = i.m4();
             o.m4(&(m * Matrix4::translate(i.v3())));
         }
-        geo::ROTATE_M => {
+        Some(Geo::RotateM) => {
             let m = i.m4();
             let a = i.f();
             o.m4(&(m * Matrix4::rotate(a, i.v3())));
         }
-        geo::SCALE_M => {
+        Some(Geo::ScaleM) => {
             let m = i.m4();
             o.m4(&(m * Matrix4::scale(i.v3())));
         }
-        geo::XFORM_POINT => {
+        Some(Geo::XformPoint) => {
             let m = i.m4();
             o.v3(m.transform_point(i.v3()));
         }
-        geo::XFORM_VECTOR => {
+        Some(Geo::XformVector) => {
             let m = i.m4();
             o.v3(m.transform_vector(i.v3()));
         }
-        geo::XFORM_NORMAL => {
+        Some(Geo::XformNormal) => {
             let m = i.m4();
             o.v3(m.transform_normal(i.v3()));
         }
-        _ => {
+        Some(Geo::CTransform) => {
             let c = i.c3();
             let space = |k: u32| COLOR_SPACES.get(k as usize).and_then(|n| ColorSpace::from_name(n));
             let r = match (space((aux >> 8) & 0xff), space((aux >> 16) & 0xff)) {
@@ -389,6 +473,7 @@ unsafe fn geo_op<F: JitFloat>(inp: *const f32, out: *mut f32, aux: u32) {
             };
             o.c3(r);
         }
+        None => {}
     }
 }
 
@@ -416,9 +501,9 @@ rt_family!(
 unsafe fn noise_op<F: JitFloat>(inp: *const f32, out: *mut f32, aux: u32) {
     let mut i = In::<F>::new(inp);
     let mut o = Out::<F>::new(out);
-    let kind = aux & 0xf;
-    let dims = (aux >> 4) & 0xf;
-    let w = (aux >> 8) & 0xf;
+    let Some(NoiseSel { kind, dims, out: w, extra }) = NoiseSel::decode(aux) else {
+        return;
+    };
     let d = domain(&mut i, dims);
     // Up to three dimensions the noise is Perlin's 3D noise; for types without derivatives
     // its kernel is inlined here (`snoise_inlined`): this function already is the one
@@ -426,8 +511,8 @@ unsafe fn noise_op<F: JitFloat>(inp: *const f32, out: *mut f32, aux: u32) {
     // and copies of its arguments. Same values as the library functions.
     let inlined = !F::DUAL && dims <= 3;
     match kind {
-        nkind::NOISE | nkind::SNOISE if inlined => {
-            let signed = kind == nkind::SNOISE;
+        NoiseOp::Noise | NoiseOp::SNoise if inlined => {
+            let signed = kind == NoiseOp::SNoise;
             // The noise inlined like the kernel: a closure here was left out of line in one
             // build of this crate and x16 noise ran 7x slower.
             #[inline(always)]
@@ -446,24 +531,24 @@ unsafe fn noise_op<F: JitFloat>(inp: *const f32, out: *mut f32, aux: u32) {
                 o.v3(noise_vector(n));
             }
         }
-        nkind::NOISE | nkind::SNOISE => {
-            let signed = kind == nkind::SNOISE;
+        NoiseOp::Noise | NoiseOp::SNoise => {
+            let signed = kind == NoiseOp::SNoise;
             if w == 1 {
                 o.f(if signed { snoise(d) } else { anysl_core::prelude::noise(d) });
             } else {
                 o.v3(if signed { vsnoise(d) } else { vnoise(d) });
             }
         }
-        nkind::CELL => {
+        NoiseOp::Cell => {
             if w == 1 {
                 o.f(cellnoise(d));
             } else {
                 o.v3(vcellnoise(d));
             }
         }
-        nkind::PNOISE | nkind::PSNOISE => {
+        NoiseOp::PNoise | NoiseOp::PSNoise => {
             let per = domain(&mut i, dims);
-            let signed = kind == nkind::PSNOISE;
+            let signed = kind == NoiseOp::PSNoise;
             if w == 1 {
                 o.f(if signed { psnoise(d, per) } else { pnoise(d, per) });
             } else {
@@ -471,13 +556,12 @@ unsafe fn noise_op<F: JitFloat>(inp: *const f32, out: *mut f32, aux: u32) {
                 o.v3(if signed { v * F::c(2.0) - Vec3::splat(F::c(1.0)) } else { v });
             }
         }
-        _ => {
-            let extra = (aux >> 12) & 0xf;
+        NoiseOp::Fbm | NoiseOp::Turbulence => {
             let mut get = |k: u32, dflt: f64| if extra > k { i.f().lane(0) } else { dflt };
             let oct = get(0, 6.0).max(0.0) as u32;
             let lac = get(1, 2.0);
             let gain = get(2, 0.5);
-            o.f(match (kind == nkind::FBM, inlined) {
+            o.f(match (kind == NoiseOp::Fbm, inlined) {
                 (true, true) => octave_sum(
                     d,
                     oct,
@@ -636,31 +720,64 @@ fn same<F: ShadingFloat>(a: Vec3<F>, b: Vec3<F>, ma: F::Mask, mb: F::Mask) -> bo
 }
 
 /// The callbacks that need the renderer: a table per float type and context type, indexed by
-/// [`crate::abi::host`].
+/// [`Host`].
 pub struct HostTable<F, C, G>(PhantomData<(F, C, G)>);
 
-impl<F: ShadingFloat, C: ShadingContext<F>, G: JitFloat> HostTable<F, C, G> {
-    /// The table (indexed by [`crate::abi::host`]): one static array per instantiation.
-    pub const TABLE: [*const (); crate::abi::host::LEN] = [
-        host_illuminance::<F, C, G> as *const (),
-        host_ambient::<F, C, G> as *const (),
-        host_diffuse::<F, C, G> as *const (),
-        host_specular::<F, C, G> as *const (),
-        host_phong::<F, C, G> as *const (),
-        host_trace::<F, C, G> as *const (),
-        host_du::<F, C, G> as *const (),
-        host_dv::<F, C, G> as *const (),
-        host_deriv::<F, C, G> as *const (),
-        host_calcnormal::<F, C, G> as *const (),
-        host_random::<F, C, G> as *const (),
-        host_space::<F, C> as *const (),
-    ];
+/// The host shims: the [`Host`] index of each and [`HostTable::TABLE`], in one list.
+macro_rules! host_shims {
+    ($($(#[$doc:meta])* $v:ident => $f:expr,)*) => {
+        /// Indices into the host table: the callbacks that need the renderer's context.
+        #[repr(usize)]
+        #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+        pub enum Host {
+            $($(#[$doc])* $v,)*
+        }
 
+        impl Host {
+            /// Number of entries.
+            pub const LEN: usize = [$(Host::$v,)*].len();
+        }
+
+        impl<F: ShadingFloat, C: ShadingContext<F>, G: JitFloat> HostTable<F, C, G> {
+            /// The table (indexed by [`Host`]): one static array per instantiation.
+            pub const TABLE: [*const (); Host::LEN] = [$($f as *const (),)*];
+        }
+    };
+}
+
+host_shims! {
+    /// `illuminance` loops: the body is a compiled function the shim calls per light.
+    Illuminance => host_illuminance::<F, C, G>,
+    /// `ambient()`.
+    Ambient => host_ambient::<F, C, G>,
+    /// `diffuse(N)` (with `aux`, also the ambient sum).
+    Diffuse => host_diffuse::<F, C, G>,
+    /// `specular(N, V, roughness)` (with `aux`, also the diffuse and ambient sums).
+    Specular => host_specular::<F, C, G>,
+    /// `phong(N, V, size)`.
+    Phong => host_phong::<F, C, G>,
+    /// `trace(P, R)`.
+    Trace => host_trace::<F, C, G>,
+    /// `Du(x)`.
+    Du => host_du::<F, C, G>,
+    /// `Dv(x)`.
+    Dv => host_dv::<F, C, G>,
+    /// `Deriv(num, den)`.
+    Deriv => host_deriv::<F, C, G>,
+    /// `calculatenormal(P)`.
+    CalcNormal => host_calcnormal::<F, C, G>,
+    /// `random()`.
+    Random => host_random::<F, C, G>,
+    /// A named coordinate system's matrix.
+    Space => host_space::<F, C>,
+}
+
+impl<F: ShadingFloat, C: ShadingContext<F>, G: JitFloat> HostTable<F, C, G> {
     /// [`HostTable::TABLE`] as the compiled code reads it (addresses as `usize`).
     #[inline(always)]
     #[must_use]
     pub fn table() -> *const usize {
-        let t: &'static [*const (); crate::abi::host::LEN] = &Self::TABLE;
+        let t: &'static [*const (); Host::LEN] = &Self::TABLE;
         t.as_ptr().cast()
     }
 }
@@ -993,14 +1110,14 @@ pub fn rt_addr<F: JitFloat>(kind: RtKind, aux: u32) -> usize {
                 rt_noise_k,
                 aux,
                 [
-                    $kind | 1 << 4 | 1 << 8,
-                    $kind | 2 << 4 | 1 << 8,
-                    $kind | 3 << 4 | 1 << 8,
-                    $kind | 4 << 4 | 1 << 8,
-                    $kind | 1 << 4 | 3 << 8,
-                    $kind | 2 << 4 | 3 << 8,
-                    $kind | 3 << 4 | 3 << 8,
-                    $kind | 4 << 4 | 3 << 8,
+                    NoiseSel { kind: $kind, dims: 1, out: 1, extra: 0 }.encode(),
+                    NoiseSel { kind: $kind, dims: 2, out: 1, extra: 0 }.encode(),
+                    NoiseSel { kind: $kind, dims: 3, out: 1, extra: 0 }.encode(),
+                    NoiseSel { kind: $kind, dims: 4, out: 1, extra: 0 }.encode(),
+                    NoiseSel { kind: $kind, dims: 1, out: 3, extra: 0 }.encode(),
+                    NoiseSel { kind: $kind, dims: 2, out: 3, extra: 0 }.encode(),
+                    NoiseSel { kind: $kind, dims: 3, out: 3, extra: 0 }.encode(),
+                    NoiseSel { kind: $kind, dims: 4, out: 3, extra: 0 }.encode(),
                 ]
             )
         };
@@ -1012,35 +1129,35 @@ pub fn rt_addr<F: JitFloat>(kind: RtKind, aux: u32) -> usize {
                 rt_noise_k,
                 aux,
                 [
-                    $kind | 1 << 4 | 1 << 8,
-                    $kind | 1 << 4 | 1 << 8 | 1 << 12,
-                    $kind | 1 << 4 | 1 << 8 | 2 << 12,
-                    $kind | 1 << 4 | 1 << 8 | 3 << 12,
-                    $kind | 3 << 4 | 1 << 8,
-                    $kind | 3 << 4 | 1 << 8 | 1 << 12,
-                    $kind | 3 << 4 | 1 << 8 | 2 << 12,
-                    $kind | 3 << 4 | 1 << 8 | 3 << 12,
+                    NoiseSel { kind: $kind, dims: 1, out: 1, extra: 0 }.encode(),
+                    NoiseSel { kind: $kind, dims: 1, out: 1, extra: 1 }.encode(),
+                    NoiseSel { kind: $kind, dims: 1, out: 1, extra: 2 }.encode(),
+                    NoiseSel { kind: $kind, dims: 1, out: 1, extra: 3 }.encode(),
+                    NoiseSel { kind: $kind, dims: 3, out: 1, extra: 0 }.encode(),
+                    NoiseSel { kind: $kind, dims: 3, out: 1, extra: 1 }.encode(),
+                    NoiseSel { kind: $kind, dims: 3, out: 1, extra: 2 }.encode(),
+                    NoiseSel { kind: $kind, dims: 3, out: 1, extra: 3 }.encode(),
                 ]
             )
         };
     }
     // `if const`: the copies are not even instantiated for the other types.
-    #[allow(clippy::identity_op)]
     if const { F::LANES >= 8 && !F::DUAL } {
-        match kind {
-            RtKind::Un => k!(rt_un_k, aux, [0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17]),
-            RtKind::Bin => k!(rt_bin_k, aux, [0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11]),
-            RtKind::Geo => {
-                k!(rt_geo_k, aux, [0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19, 20, 21, 22]);
-            }
+        let special = match kind {
+            RtKind::Un => Un::special_addr::<F>(aux),
+            RtKind::Bin => Bin::special_addr::<F>(aux),
+            // Colour transforms carry their spaces in `aux`: the general function.
+            RtKind::Geo if aux & 0xff == Geo::CTransform as u32 => None,
+            RtKind::Geo => Geo::special_addr::<F>(aux),
             RtKind::Noise => {
-                noise!(nkind::NOISE);
-                noise!(nkind::SNOISE);
-                noise!(nkind::CELL);
-                noise!(nkind::PNOISE);
-                noise!(nkind::PSNOISE);
-                fractal!(nkind::FBM);
-                fractal!(nkind::TURBULENCE);
+                noise!(NoiseOp::Noise);
+                noise!(NoiseOp::SNoise);
+                noise!(NoiseOp::Cell);
+                noise!(NoiseOp::PNoise);
+                noise!(NoiseOp::PSNoise);
+                fractal!(NoiseOp::Fbm);
+                fractal!(NoiseOp::Turbulence);
+                None
             }
             RtKind::Spline => {
                 let bw = aux >> 8;
@@ -1062,7 +1179,11 @@ pub fn rt_addr<F: JitFloat>(kind: RtKind, aux: u32) -> usize {
                         5 | 3 << 8,
                     ]
                 );
+                None
             }
+        };
+        if let Some(a) = special {
+            return a;
         }
     }
     rt_table::<F>()[kind as usize] as usize
@@ -1115,19 +1236,19 @@ mod tests {
         let n = X::STRIDE;
         let inp: Vec<f32> = (0..64 * n).map(|k| 0.37 + 0.61 * (k / n) as f32 + 0.001 * (k % n) as f32).collect();
         let mut cases: Vec<(RtKind, u32)> = Vec::new();
-        cases.extend((0..18).map(|a| (RtKind::Un, a)));
-        cases.extend((0..12).map(|a| (RtKind::Bin, a)));
-        cases.extend((0..23).filter(|&a| a != geo::CTRANSFORM).map(|a| (RtKind::Geo, a)));
-        for kind in [nkind::NOISE, nkind::SNOISE, nkind::CELL, nkind::PNOISE, nkind::PSNOISE] {
+        cases.extend(Un::ALL.iter().map(|&a| (RtKind::Un, a as u32)));
+        cases.extend(Bin::ALL.iter().map(|&a| (RtKind::Bin, a as u32)));
+        cases.extend(Geo::ALL.iter().filter(|&&a| a != Geo::CTransform).map(|&a| (RtKind::Geo, a as u32)));
+        for kind in [NoiseOp::Noise, NoiseOp::SNoise, NoiseOp::Cell, NoiseOp::PNoise, NoiseOp::PSNoise] {
             for dims in 1..=4 {
-                for w in [1, 3] {
-                    cases.push((RtKind::Noise, kind | dims << 4 | w << 8));
+                for out in [1, 3] {
+                    cases.push((RtKind::Noise, NoiseSel { kind, dims, out, extra: 0 }.encode()));
                 }
             }
         }
-        for kind in [nkind::FBM, nkind::TURBULENCE] {
+        for kind in [NoiseOp::Fbm, NoiseOp::Turbulence] {
             for dims in [1, 3] {
-                cases.push((RtKind::Noise, kind | dims << 4 | 1 << 8 | 2 << 12));
+                cases.push((RtKind::Noise, NoiseSel { kind, dims, out: 1, extra: 2 }.encode()));
             }
         }
         for b in 0..6 {
@@ -1160,7 +1281,10 @@ mod tests {
         }
         assert!(specialized > 100, "only {specialized} calls have their own function");
         // A call without a specialized copy gets the general function.
-        assert_eq!(rt_addr::<X>(RtKind::Geo, geo::CTRANSFORM | 1 << 8), rt_table::<X>()[RtKind::Geo as usize] as usize);
+        assert_eq!(
+            rt_addr::<X>(RtKind::Geo, Geo::CTransform as u32 | 1 << 8),
+            rt_table::<X>()[RtKind::Geo as usize] as usize
+        );
     }
 
     /// The runtime noise, whose kernel is inlined for types without derivatives, gives the
@@ -1188,13 +1312,13 @@ mod tests {
                 let dims = k as u32 + 1;
                 let args = [x, y, z];
                 let a = &args[..k + 1];
-                let sel = |kind: u32, w: u32| kind | dims << 4 | w << 8;
+                let sel = |kind: NoiseOp, out: u32| NoiseSel { kind, dims, out, extra: 0 }.encode();
                 let v3 = |v: Vec3<F>| vec![v.x, v.y, v.z];
                 let cases: [(u32, Vec<F>, Vec<F>); 4] = [
-                    (sel(nkind::SNOISE, 1), run(sel(nkind::SNOISE, 1), a, 1), vec![snoise(d)]),
-                    (sel(nkind::NOISE, 1), run(sel(nkind::NOISE, 1), a, 1), vec![anysl_core::prelude::noise(d)]),
-                    (sel(nkind::SNOISE, 3), run(sel(nkind::SNOISE, 3), a, 3), v3(vsnoise(d))),
-                    (sel(nkind::NOISE, 3), run(sel(nkind::NOISE, 3), a, 3), v3(vnoise(d))),
+                    (sel(NoiseOp::SNoise, 1), run(sel(NoiseOp::SNoise, 1), a, 1), vec![snoise(d)]),
+                    (sel(NoiseOp::Noise, 1), run(sel(NoiseOp::Noise, 1), a, 1), vec![anysl_core::prelude::noise(d)]),
+                    (sel(NoiseOp::SNoise, 3), run(sel(NoiseOp::SNoise, 3), a, 3), v3(vsnoise(d))),
+                    (sel(NoiseOp::Noise, 3), run(sel(NoiseOp::Noise, 3), a, 3), v3(vnoise(d))),
                 ];
                 for (aux, got, want) in cases {
                     assert_eq!(bits(&got), bits(&want), "{} aux {aux:#x}", F::NAME);
@@ -1202,9 +1326,9 @@ mod tests {
                 let mut with_opts = a.to_vec();
                 with_opts.extend([F::c(4.0), F::c(2.5), F::c(0.375)]);
                 for (kind, want) in
-                    [(nkind::FBM, fbm(d, 4, 2.5, 0.375)), (nkind::TURBULENCE, turbulence(d, 4, 2.5, 0.375))]
+                    [(NoiseOp::Fbm, fbm(d, 4, 2.5, 0.375)), (NoiseOp::Turbulence, turbulence(d, 4, 2.5, 0.375))]
                 {
-                    let aux = sel(kind, 1) | 3 << 12;
+                    let aux = NoiseSel { kind, dims, out: 1, extra: 3 }.encode();
                     assert_eq!(bits(&run(aux, &with_opts, 1)), bits(&[want]), "{} aux {aux:#x}", F::NAME);
                 }
             }

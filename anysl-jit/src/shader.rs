@@ -18,6 +18,17 @@ use std::any::TypeId;
 use std::path::Path;
 use std::sync::{Arc, Mutex, OnceLock};
 
+/// One shading point's results as [`JitShader::eval_point`] reads them back (lane 0).
+#[derive(Clone, Debug, PartialEq)]
+pub struct PointOutputs {
+    /// `Ci`.
+    pub ci: [f64; 3],
+    /// `Oi`.
+    pub oi: [f64; 3],
+    /// The numeric output parameters in declaration order: name and components.
+    pub params: Vec<(String, Vec<f64>)>,
+}
+
 /// The JIT variant that shades with float type `F`, if any.
 #[must_use]
 pub fn variant_of<F: 'static>() -> Option<Variant> {
@@ -53,6 +64,8 @@ pub struct JitShader {
     /// Compiler settings.
     pub opts: JitOptions,
     variants: [Slot; Variant::ALL.len()],
+    /// Variants that also write the output parameters ([`JitShader::eval_point`]).
+    eval_variants: [Slot; Variant::ALL.len()],
     points: PointsCache,
     interp: InterpShader,
     /// `values` as the run-time parameter block that code compiled without specialization
@@ -67,6 +80,7 @@ impl Clone for JitShader {
             values: self.values.clone(),
             opts: self.opts.clone(),
             variants: Default::default(),
+            eval_variants: Default::default(),
             points: PointsCache::default(),
             interp: self.interp.clone(),
             param_block: self.param_block.clone(),
@@ -87,8 +101,7 @@ impl JitShader {
     /// When the interpreter (the fallback for other float types) cannot run the module.
     pub fn new(module: Module, opts: JitOptions) -> Result<Self, JitError> {
         let values: Vec<Const> = module.params.iter().map(|p| p.default.clone()).collect();
-        let mut interp_module = module.clone();
-        anysl_rsl::passes::optimize(&mut interp_module, &anysl_rsl::passes::PassOptions::default());
+        let interp_module = anysl_rsl::passes::optimize(module.clone(), &anysl_rsl::passes::PassOptions::default());
         let program = Program::new(interp_module).map_err(|e| JitError(e.to_string()))?;
         let param_block = crate::codegen::param_block(&module, &values).0;
         Ok(Self {
@@ -97,6 +110,7 @@ impl JitShader {
             values,
             opts,
             variants: Default::default(),
+            eval_variants: Default::default(),
             points: PointsCache::default(),
             interp: InterpShader::new(Arc::new(program)),
         })
@@ -142,6 +156,73 @@ impl JitShader {
         self.variants[v.index()]
             .get_or_init(|| compile(&self.module, &self.values, v, &self.opts).map(Arc::new).map_err(|e| e.to_string()))
             .as_ref()
+    }
+
+    /// Shades one point with compiled code (the variant of `F`; `f32` and `Dual<f32>`, one
+    /// lane) and reads back `Ci`, `Oi` and every numeric output parameter: the JIT's answer
+    /// to `rslc eval`, compiled with [`JitOptions::output_params`] (and cached apart from
+    /// the variants [`SurfaceShader::shade`] runs).
+    ///
+    /// # Errors
+    /// When `F` is not a one-lane type the JIT compiles, or the shader cannot be compiled
+    /// (never a silent fallback to the interpreter).
+    pub fn eval_point<F: ShadingFloat, C: ShadingContext<F>>(&self, ctx: &mut C) -> Result<PointOutputs, String> {
+        let v = match variant_of::<F>() {
+            Some(v @ (Variant::F32 | Variant::DualF32)) => v,
+            _ => return Err(format!("eval_point runs f32 or Dual<f32>, not {}", core::any::type_name::<F>())),
+        };
+        let cs = self.eval_variants[v.index()]
+            .get_or_init(|| {
+                let opts = JitOptions { output_params: true, ..self.opts.clone() };
+                compile(&self.module, &self.values, v, &opts).map(Arc::new).map_err(|e| e.to_string())
+            })
+            .as_ref()
+            .map_err(Clone::clone)?;
+        if v == Variant::F32 {
+            if const { may_be::<F, f32>() } {
+                return Ok(self.run_eval::<F, C, f32>(cs, ctx));
+            }
+        } else if const { may_be::<F, Dual<f32>>() } {
+            return Ok(self.run_eval::<F, C, Dual<f32>>(cs, ctx));
+        }
+        unreachable!("variant_of::<{}>() named {v:?}, a type of other lanes or size", core::any::type_name::<F>())
+    }
+
+    fn run_eval<F: ShadingFloat, C: ShadingContext<F>, G: JitFloat>(
+        &self,
+        cs: &CompiledShader,
+        ctx: &mut C,
+    ) -> PointOutputs {
+        let layout = crate::abi::output_params(&self.module);
+        let values = layout.last().map_or(crate::abi::OUTPUT_VALUES, |&(_, at, n)| at + n);
+        let mut out = vec![0f32; values * G::STRIDE];
+        let mut mbuf = [0u32; crate::abi::MAX_LANES];
+        let gbuf = (ctx.globals() as *const Globals<F>).cast::<f32>();
+        unsafe { G::write_mask(G::Mask::splat(true), mbuf.as_mut_ptr()) };
+        let host = HostTable::<F, C, G>::table();
+        let mut hc = HostCtx::new(ctx);
+        // SAFETY: as in `run`; the output buffer has room for every value the code compiled
+        // with `output_params` writes (`abi::output_params`).
+        unsafe {
+            (cs.f)(
+                gbuf,
+                out.as_mut_ptr(),
+                mbuf.as_ptr(),
+                (&mut hc as *mut HostCtx<F, C>).cast(),
+                host,
+                self.param_block.as_ptr(),
+            );
+        }
+        // SAFETY: `out` holds `values` values of `G`, `STRIDE` floats apart.
+        let rd = |k: usize| unsafe { G::read(out.as_ptr().add(k * G::STRIDE)) }.lane(0);
+        PointOutputs {
+            ci: [rd(0), rd(1), rd(2)],
+            oi: [rd(3), rd(4), rd(5)],
+            params: layout
+                .iter()
+                .map(|&(k, at, n)| (self.module.params[k].name.clone(), (at..at + n).map(rd).collect()))
+                .collect(),
+        }
     }
 
     /// The points entry of variant `v` for `layout` (compiling it now if needed).
@@ -375,6 +456,7 @@ impl Shader for JitShader {
         if self.opts.specialize {
             // Parameters are compiled in: recompile on next use.
             self.variants = Default::default();
+            self.eval_variants = Default::default();
             self.points = PointsCache::default();
         }
         Ok(())

@@ -29,8 +29,7 @@ light pointlight (float intensity = 1; color lightcolor = 1; point from = point 
 
 fn lights() -> Vec<InterpLight> {
     let c = compile_source("pointlight.sl", POINT_LIGHT, &CompileOptions::default()).expect("point light compiles");
-    let mut m = c.module;
-    optimize(&mut m, &PassOptions::default());
+    let m = optimize(c.module, &PassOptions::default());
     vec![InterpLight::new(Arc::new(Program::new(m).expect("point light prepares")))]
 }
 
@@ -71,15 +70,11 @@ fn run_points<F: ShadingFloat>(prog: &Program, n: usize, lights: &[InterpLight])
 
 /// Optimizes and interprets a compiled shader; `Err` when the interpreter cannot prepare it.
 fn interpret(c: Compiled, n: usize) -> Result<Vec<[f64; 3]>, String> {
-    let mut m = c.module;
-    let report = optimize(&mut m, &PassOptions::default());
+    let m = optimize(c.module, &PassOptions::default());
+    let derivs = m.uses_derivatives();
     let prog = Program::new(m).map_err(|e| e.to_string())?;
     let lights = lights();
-    Ok(if report.uses_derivatives {
-        run_points::<Dual<f32>>(&prog, n, &lights)
-    } else {
-        run_points::<f32>(&prog, n, &lights)
-    })
+    Ok(if derivs { run_points::<Dual<f32>>(&prog, n, &lights) } else { run_points::<f32>(&prog, n, &lights) })
 }
 
 /// Checks `src` (panicking with the rendered diagnostics on errors) and runs it.

@@ -91,8 +91,8 @@ impl Surfaces<InterpShader> {
     /// Shaders run by the batched interpreter (optimized IR).
     #[must_use]
     pub fn interpreter(library: ShaderLibrary) -> Self {
-        Self::new(library, |mut m| {
-            anysl_rsl::passes::optimize(&mut m, &anysl_rsl::passes::PassOptions::default());
+        Self::new(library, |m| {
+            let m = anysl_rsl::passes::optimize(m, &anysl_rsl::passes::PassOptions::default());
             Program::new(m).map(|p| InterpShader::new(Arc::new(p))).map_err(|e| e.to_string())
         })
     }

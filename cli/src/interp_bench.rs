@@ -54,9 +54,7 @@ pub fn load_program(name: &str) -> Result<Program, String> {
     let file = dir.join(format!("{name}.sl"));
     let sl = SlOptions { include: vec![dir.join("include")], define: Vec::new() };
     let c = crate::rslc::compile(&file, &sl)?;
-    let mut m = c.module;
-    optimize(&mut m, &PassOptions::default());
-    Program::new(m).map_err(|e| format!("{}: {e}", file.display()))
+    Program::new(optimize(c.module, &PassOptions::default())).map_err(|e| format!("{}: {e}", file.display()))
 }
 
 fn median(mut v: Vec<f64>) -> f64 {

@@ -285,10 +285,7 @@ pub fn bench(opts: &JitBenchOpts) -> Result<Vec<JitBenchRow>, String> {
             jit.variant(v)?;
         }
         let interp_t = Instant::now();
-        let program = {
-            let (m, _) = ir_passes(&jit.module, &jit.values, false);
-            Program::new(m).map_err(|e| e.to_string())?
-        };
+        let program = { Program::new(ir_passes(&jit.module, &jit.values, false)).map_err(|e| e.to_string())? };
         let interp = InterpShader::new(Arc::new(program));
         let interp_ms = interp_t.elapsed().as_secs_f64() * 1e3;
         type Run<'a> = Box<dyn FnMut(&mut ShadeOut<f32>) + 'a>;

@@ -311,8 +311,7 @@ fn render_backend(
     let file = sl_file(shader);
     match backend {
         Backend::Interp => {
-            let mut m = load_module(&file)?;
-            anysl_rsl::passes::optimize(&mut m, &anysl_rsl::passes::PassOptions::default());
+            let m = anysl_rsl::passes::optimize(load_module(&file)?, &anysl_rsl::passes::PassOptions::default());
             let p = anysl_rsl::back::interp::Program::new(m).map_err(|e| format!("{}: {e}", file.display()))?;
             render_loaded(anysl_rsl::back::interp::InterpShader::new(std::sync::Arc::new(p)), args, lanes, opts)
         }

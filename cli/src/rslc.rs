@@ -230,24 +230,24 @@ pub fn run(cmd: &RslcCommand) -> Result<u8, String> {
         }
         RslcCommand::Info { file, sl } => {
             let c = compile(file, sl)?;
-            let mut m = c.module;
-            let report = optimize(&mut m, &PassOptions::default());
+            let m = optimize(c.module, &PassOptions::default());
             println!(
                 "{}",
-                serde_json::to_string_pretty(&info_json(&m, report.uses_derivatives)).map_err(|e| e.to_string())?
+                serde_json::to_string_pretty(&info_json(m.module(), m.uses_derivatives())).map_err(|e| e.to_string())?
             );
             Ok(0)
         }
         RslcCommand::Ir { file, set, no_opt, sl } => {
             let c = compile(file, sl)?;
-            let mut m = c.module;
+            let m = c.module;
             let values = parse_sets(&m, set)?;
             if *no_opt {
                 print!("{m}");
                 return Ok(0);
             }
-            let report = optimize(&mut m, &PassOptions { specialize: values, ..PassOptions::default() });
-            print!("{m}");
+            let a = optimize(m, &PassOptions { specialize: values, ..PassOptions::default() });
+            let report = a.report();
+            print!("{}", a.module());
             let stages: Vec<String> = report.stages.iter().map(|(s, n)| format!("{s} {n}")).collect();
             println!("; instructions by stage: {}", stages.join(" → "));
             println!("; uses derivatives: {}", report.uses_derivatives);
@@ -352,6 +352,67 @@ fn eval_interp<F: ShadingFloat>(
     points
 }
 
+/// A `--set` value as a parameter value.
+fn param_value(name: &str, c: &Const) -> Result<ParamValue, String> {
+    Ok(match c {
+        Const::Float(x) => ParamValue::Float(*x),
+        Const::Triple(t) => ParamValue::Triple(*t),
+        Const::Str(s) => ParamValue::String(s.clone()),
+        Const::Matrix(m) => ParamValue::Matrix(*m),
+        Const::Array(_) => return Err(format!("--set {name}: arrays cannot be set on the command line")),
+    })
+}
+
+/// Runs the JIT's compiled code over the grid (`f32`, or `Dual<f32>` when the shader uses
+/// derivatives, as the interpreter) and reads back `Ci`, `Oi` and the output parameters.
+#[cfg(feature = "jit")]
+fn eval_jit(
+    module: Module,
+    values: &[(String, Const)],
+    w: usize,
+    h: usize,
+    sets: &[GlobalSet],
+    lights: &[Light],
+    derivs: bool,
+) -> Result<Vec<Json>, String> {
+    use anysl_jit::{JitOptions, JitShader, PointOutputs};
+    let mut shader = JitShader::new(module, JitOptions::default()).map_err(|e| e.to_string())?;
+    for (name, c) in values {
+        shader.set_param(name, &param_value(name, c)?).map_err(|e| format!("--set {name}: {e}"))?;
+    }
+    let mut points = Vec::new();
+    for j in 0..h {
+        for i in 0..w {
+            let o: PointOutputs = if derivs {
+                let mut ctx =
+                    PointContext::new(anysl_rsl::eval::grid_globals::<Dual<f32>, _>(i, j, w, h, sets), lights);
+                shader.eval_point(&mut ctx)
+            } else {
+                let mut ctx = PointContext::new(anysl_rsl::eval::grid_globals::<f32, _>(i, j, w, h, sets), lights);
+                shader.eval_point(&mut ctx)
+            }
+            .map_err(|e| format!("--backend jit: {e}"))?;
+            let outputs: serde_json::Map<String, Json> =
+                o.params.iter().map(|(name, v)| (name.clone(), json_vals(v))).collect();
+            points.push(json!({"Ci": o.ci, "Oi": o.oi, "outputs": outputs}));
+        }
+    }
+    Ok(points)
+}
+
+#[cfg(not(feature = "jit"))]
+fn eval_jit(
+    _: Module,
+    _: &[(String, Const)],
+    _: usize,
+    _: usize,
+    _: &[GlobalSet],
+    _: &[Light],
+    _: bool,
+) -> Result<Vec<Json>, String> {
+    Err("--backend jit: this build has no JIT (build with the `jit` feature)".into())
+}
+
 /// `rslc eval`: the points as JSON.
 pub fn eval(
     module: Module,
@@ -363,9 +424,11 @@ pub fn eval(
 ) -> Result<Json, String> {
     let (w, h) = parse_grid(grid)?;
     let sets = parse_globals(global)?;
-    let mut m = module;
-    let values = parse_sets(&m, set)?;
-    let report = optimize(&mut m, &PassOptions::default());
+    let values = parse_sets(&module, set)?;
+    // The JIT runs its own passes per instance, on the lowered module.
+    let lowered = (backend == EvalBackend::Jit).then(|| module.clone());
+    let m = optimize(module, &PassOptions::default());
+    let uses_derivatives = m.uses_derivatives();
     let lights: Vec<Light> = if no_lights { Vec::new() } else { table1_lights() };
     let points = match backend {
         EvalBackend::Interp => {
@@ -376,29 +439,22 @@ pub fn eval(
                     shader.values[i] = c.clone();
                 }
             }
-            if report.uses_derivatives {
+            if uses_derivatives {
                 eval_interp::<Dual<f32>>(&prog, &shader.values, w, h, &sets, &lights)
             } else {
                 eval_interp::<f32>(&prog, &shader.values, w, h, &sets, &lights)
             }
         }
         EvalBackend::Aot => {
-            let mut s = anysl_shaders::Surface::by_name(&m.name).ok_or_else(|| {
+            let mut s = anysl_shaders::Surface::by_name(&m.module().name).ok_or_else(|| {
                 format!(
                     "--backend aot: no compiled shader named '{}' (compiled shaders: {})",
-                    m.name,
+                    m.module().name,
                     anysl_shaders::Surface::NAMES.join(", ")
                 )
             })?;
             for (name, c) in &values {
-                let v = match c {
-                    Const::Float(x) => ParamValue::Float(*x),
-                    Const::Triple(t) => ParamValue::Triple(*t),
-                    Const::Str(s) => ParamValue::String(s.clone()),
-                    Const::Matrix(m) => ParamValue::Matrix(*m),
-                    Const::Array(_) => return Err(format!("--set {name}: arrays cannot be set on the command line")),
-                };
-                s.set_param(name, &v).map_err(|e| format!("--set {name}: {e}"))?;
+                s.set_param(name, &param_value(name, c)?).map_err(|e| format!("--set {name}: {e}"))?;
             }
             let mut points = Vec::new();
             for j in 0..h {
@@ -421,7 +477,10 @@ pub fn eval(
             }
             points
         }
-        EvalBackend::Jit => return Err("--backend jit: this build has no JIT (build with the `jit` feature)".into()),
+        EvalBackend::Jit => {
+            let lowered = lowered.expect("kept for the JIT");
+            eval_jit(lowered, &values, w, h, &sets, &lights, uses_derivatives)?
+        }
     };
     Ok(json!({ "points": points }))
 }

@@ -211,8 +211,7 @@ struct Interp {
 
 impl Interp {
     fn compile(shader: &WorkloadShader) -> Result<InterpShader, String> {
-        let mut m = sl_module(shader)?;
-        optimize(&mut m, &PassOptions::default());
+        let m = optimize(sl_module(shader)?, &PassOptions::default());
         let program = Program::new(m).map_err(|e| format!("{}: {e}", shader.sl_file_name()))?;
         let mut interp = InterpShader::new(std::sync::Arc::new(program));
         copy_params(shader, &mut interp)?;

@@ -14,7 +14,7 @@
 //! with the lanes whose cosine is `+0` taken out ([`Cg::pow_of_cosine`]).
 
 use super::{Cg, Repr, M, S};
-use crate::abi::host;
+use crate::abi::Host;
 use crate::rt::{self, RtKind};
 use anysl_core::{Falloff, LightData, LightKind};
 use anysl_rsl::ir::Global;
@@ -35,17 +35,17 @@ struct Sums {
 }
 
 impl<'c> Cg<'c, '_> {
-    /// The renderer call `idx` ([`host::AMBIENT`], [`host::DIFFUSE`] or [`host::SPECULAR`],
+    /// The renderer call `idx` ([`Host::Ambient`], [`Host::Diffuse`] or [`Host::Specular`],
     /// with `aux` as the host shims take it), or — when the context describes its lights as
     /// data — the same sums from a loop over them here.
-    pub(super) fn light_call(&mut self, idx: usize, aux: u32, args: &[S<'c>], n_out: usize) -> Vec<S<'c>> {
+    pub(super) fn light_call(&mut self, idx: Host, aux: u32, args: &[S<'c>], n_out: usize) -> Vec<S<'c>> {
         if self.t.dual || self.lights_by_renderer {
             // Dual numbers: the derivatives of the sums would be needed too.
             return self.host_call(idx, aux, args, n_out);
         }
         let sums = match idx {
-            host::SPECULAR => Sums { specular: true, diffuse: aux >= 1, ambient: aux >= 2 },
-            host::DIFFUSE => Sums { specular: false, diffuse: true, ambient: aux >= 1 },
+            Host::Specular => Sums { specular: true, diffuse: aux >= 1, ambient: aux >= 2 },
+            Host::Diffuse => Sums { specular: false, diffuse: true, ambient: aux >= 1 },
             _ => Sums { specular: false, diffuse: false, ambient: true },
         };
         let func = self.cur_fn();
@@ -123,7 +123,7 @@ impl<'c> Cg<'c, '_> {
                 let pi = self.fc(core::f64::consts::PI);
                 let a = self.minmax(angle, pi, false);
                 let a = if self.t.lanes > 1 { self.to(a, Repr::V) } else { a };
-                let c = self.rt_call(RtKind::Un, rt::un::COS, &[a], 1, false)[0];
+                let c = self.rt_call(RtKind::Un, rt::Un::Cos as u32, &[a], 1, false)[0];
                 let c2a2 = self.mul(self.mul(c, c), self.dot(&axis, &axis));
                 let narrow = self.cmp(FloatPredicate::OGE, c, self.fc(0.0));
                 let all = self.cmp(FloatPredicate::OGE, angle, pi);
@@ -462,7 +462,7 @@ impl<'c> Cg<'c, '_> {
         let zero = self.fc(0.0);
         let skip = self.mand(M { uni: false, v: plus_zero }, self.cmp(FloatPredicate::OGT, y, zero));
         let base = self.sel(skip, self.fc(1.0), x);
-        let p = self.rt_call(RtKind::Bin, rt::bin::POW, &[base, y], 1, false)[0];
+        let p = self.rt_call(RtKind::Bin, rt::Bin::Pow as u32, &[base, y], 1, false)[0];
         self.sel(skip, self.to(zero, p.r), p)
     }
 

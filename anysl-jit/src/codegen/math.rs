@@ -45,20 +45,27 @@ pub(super) enum MathFn {
 }
 
 impl MathFn {
-    /// The function for a runtime selector: unary ([`rt::un`]) or binary ([`rt::bin`]).
+    /// The function for a runtime selector: unary ([`rt::Un`]) or binary ([`rt::Bin`]).
     pub(super) fn of(kind: RtKind, aux: u32) -> Option<Self> {
-        Some(match (kind, aux) {
-            (RtKind::Un, rt::un::SIN) => Self::Sin,
-            (RtKind::Un, rt::un::COS) => Self::Cos,
-            (RtKind::Un, rt::un::TAN) => Self::Tan,
-            (RtKind::Un, rt::un::ASIN) => Self::Asin,
-            (RtKind::Un, rt::un::ACOS) => Self::Acos,
-            (RtKind::Un, rt::un::ATAN) => Self::Atan,
-            (RtKind::Un, rt::un::EXP) => Self::Exp,
-            (RtKind::Un, rt::un::LOG) => Self::Ln,
-            (RtKind::Bin, rt::bin::ATAN2) => Self::Atan2,
-            (RtKind::Bin, rt::bin::POW) => Self::Pow,
-            (RtKind::Bin, rt::bin::LOG_BASE) => Self::LogBase,
+        use rt::{Bin, Un};
+        Some(match kind {
+            RtKind::Un => match Un::from_aux(aux)? {
+                Un::Sin => Self::Sin,
+                Un::Cos => Self::Cos,
+                Un::Tan => Self::Tan,
+                Un::Asin => Self::Asin,
+                Un::Acos => Self::Acos,
+                Un::Atan => Self::Atan,
+                Un::Exp => Self::Exp,
+                Un::Log => Self::Ln,
+                _ => return None,
+            },
+            RtKind::Bin => match Bin::from_aux(aux)? {
+                Bin::Atan2 => Self::Atan2,
+                Bin::Pow => Self::Pow,
+                Bin::LogBase => Self::LogBase,
+                _ => return None,
+            },
             _ => return None,
         })
     }
@@ -599,14 +606,14 @@ impl<'c> Cg<'c, '_> {
     fn k_trig(&mut self, x: V<'c>, f: MathFn) -> V<'c> {
         let ax = self.k_abs(x);
         let (v, which) = match f {
-            MathFn::Sin => (self.k_xor_sign(self.k_sin_cos_abs(ax, 0), self.k_sign_bit(x)), rt::un::SIN),
-            MathFn::Cos => (self.k_sin_cos_abs(ax, 1), rt::un::COS),
+            MathFn::Sin => (self.k_xor_sign(self.k_sin_cos_abs(ax, 0), self.k_sign_bit(x)), rt::Un::Sin as u32),
+            MathFn::Cos => (self.k_sin_cos_abs(ax, 1), rt::Un::Cos as u32),
             _ => {
                 let (r, n) = self.k_reduce_pio2(ax);
                 let z = self.kmul(r, r);
                 let t = self.kfma(self.kmul(r, z), self.khorner(z, &kc::TAN_T), r);
                 let v = self.ksel(self.kodd(n), self.kdiv(self.kf(-1.0), t), t);
-                (self.k_xor_sign(v, self.k_sign_bit(x)), rt::un::TAN)
+                (self.k_xor_sign(v, self.k_sign_bit(x)), rt::Un::Tan as u32)
             }
         };
         let big = self.kcmp(FloatPredicate::OLT, self.kf(kc::TRIG_VECTOR_LIMIT), ax);

@@ -5,7 +5,7 @@
 
 use anysl_core::stdlib::{fresnel, refract};
 use anysl_core::{Exec, Globals, PointContext, ShadingFloat, SurfaceShader, Vec3};
-use anysl_jit::rt::{geo, rt_addr, RtKind};
+use anysl_jit::rt::{rt_addr, Geo, RtKind};
 use anysl_jit::{JitOptions, JitShader, Variant};
 use anysl_shaders::Light;
 use anysl_simd::{F32x16, F32x4, F32x8};
@@ -133,7 +133,7 @@ fn glass_calls_no_library_fresnel() {
             _ => rt_addr::<F32x8>(RtKind::Geo, aux),
         };
         let ir = anysl_jit::compile_with(&jit.module, &jit.values, v, &jit.opts, true).unwrap().llvm_ir.unwrap();
-        for (name, aux) in [("fresnel", geo::FRESNEL), ("refract", geo::REFRACT)] {
+        for (name, aux) in [("fresnel", Geo::Fresnel as u32), ("refract", Geo::Refract as u32)] {
             assert!(!ir.contains(&format!("i64 {} to", a(aux))), "{v:?}: glass calls the library's {name}");
         }
     }

@@ -3,7 +3,7 @@
 //! no longer calls the library for them.
 
 use anysl_core::{Exec, Globals, PointContext, ShadingFloat, SurfaceShader};
-use anysl_jit::rt::{rt_addr, un, RtKind};
+use anysl_jit::rt::{rt_addr, RtKind, Un};
 use anysl_jit::{JitOptions, JitShader, Variant};
 use anysl_shaders::Light;
 use anysl_simd::{F32x16, F32x4, F32x8};
@@ -177,10 +177,10 @@ fn starball_calls_no_library_transcendentals() {
             _ => rt_addr::<F32x8>(k, aux),
         };
         vec![
-            ("sin", a(RtKind::Un, un::SIN)),
-            ("cos", a(RtKind::Un, un::COS)),
-            ("acos", a(RtKind::Un, un::ACOS)),
-            ("atan2", a(RtKind::Bin, anysl_jit::rt::bin::ATAN2)),
+            ("sin", a(RtKind::Un, Un::Sin as u32)),
+            ("cos", a(RtKind::Un, Un::Cos as u32)),
+            ("acos", a(RtKind::Un, Un::Acos as u32)),
+            ("atan2", a(RtKind::Bin, anysl_jit::rt::Bin::Atan2 as u32)),
         ]
     };
     for v in [Variant::X4, Variant::X8, Variant::X16] {

@@ -1,7 +1,9 @@
 //! IR passes: specialization of uniform parameters with constant folding, dead-code
 //! elimination, uniform/varying analysis and derivative-activity analysis.
 //!
-//! [`optimize`] runs them in that order and reports the instruction count after each stage.
+//! [`optimize`] runs them in that order and returns an [`Analyzed`] module: the one thing the
+//! back ends (the interpreter's [`crate::back::interp::Program`], the Rust generator, the
+//! JIT) take, so none of them can be handed a module whose analyses have not run.
 
 pub mod analysis;
 pub mod dce;
@@ -38,12 +40,47 @@ pub struct PassReport {
     pub uses_derivatives: bool,
 }
 
-/// Runs the passes and the analyses (the analyses always run: back ends rely on them).
-pub fn optimize(module: &mut Module, opts: &PassOptions) -> PassReport {
+/// A module after [`optimize`]: passes run, every instruction's uniform/varying detail and
+/// derivative need set. Only [`optimize`] makes one.
+#[derive(Clone, Debug)]
+pub struct Analyzed {
+    module: Module,
+    report: PassReport,
+}
+
+impl Analyzed {
+    /// The analyzed module.
+    #[must_use]
+    pub fn module(&self) -> &Module {
+        &self.module
+    }
+
+    /// What the passes did and found.
+    #[must_use]
+    pub fn report(&self) -> &PassReport {
+        &self.report
+    }
+
+    /// True when some value needs derivatives (the shader must run on dual numbers).
+    #[must_use]
+    pub fn uses_derivatives(&self) -> bool {
+        self.report.uses_derivatives
+    }
+
+    /// The module, for a back end that keeps it.
+    #[must_use]
+    pub fn into_module(self) -> Module {
+        self.module
+    }
+}
+
+/// Runs the passes, then the analyses (always: back ends rely on them).
+#[must_use]
+pub fn optimize(mut module: Module, opts: &PassOptions) -> Analyzed {
     let mut report = PassReport::default();
     report.stages.push(("lowered", module.func.inst_count()));
     if !opts.specialize.is_empty() || opts.specialize_defaults {
-        fold::specialize(module, &opts.specialize, opts.specialize_defaults);
+        fold::specialize(&mut module, &opts.specialize, opts.specialize_defaults);
         report.stages.push(("specialized", module.func.inst_count()));
     }
     if opts.fold {
@@ -51,10 +88,10 @@ pub fn optimize(module: &mut Module, opts: &PassOptions) -> PassReport {
         report.stages.push(("folded", module.func.inst_count()));
     }
     if opts.dce {
-        dce::eliminate_dead_code(module);
+        dce::eliminate_dead_code(&mut module);
         report.stages.push(("dce", module.func.inst_count()));
     }
     analysis::analyze_uniform(&mut module.func);
     report.uses_derivatives = analysis::analyze_derivatives(&mut module.func);
-    report
+    Analyzed { module, report }
 }

@@ -62,12 +62,11 @@ pub fn section(sz: &Sizes) -> Result<Section, String> {
         let mut speeds = Vec::new();
         let mut uses = false;
         for (_, opts) in &configs {
-            let mut m = module.clone();
             let t = Instant::now();
-            let report = optimize(&mut m, opts);
+            let m = optimize(module.clone(), opts);
             let ms = t.elapsed().as_secs_f64() * 1e3;
-            uses = report.uses_derivatives;
-            let n = m.func.inst_count();
+            uses = m.uses_derivatives();
+            let n = m.module().func.inst_count();
             let prog = Program::new(m).map_err(|e| format!("{stem}: {e}"))?;
             let interp = InterpShader::new(Arc::new(prog));
             let ns = ns_per_point(&set, sz.runs, |o| shade_points::<F32x8, _, Light>(&interp, &lights, &set, o));

@@ -7,6 +7,7 @@ use crate::table1::{averages, generic_vs_native, Table1Opts, Table1Row};
 /// Runs the Table-1 benchmark single-threaded and formats it.
 pub fn section(sz: &Sizes) -> Result<Section, String> {
     let opts = Table1Opts { size: sz.table1_size, runs: sz.table1_runs, threads: 1, shaders: Vec::new() };
+    #[cfg_attr(not(feature = "jit"), allow(unused_mut))]
     let mut rows = crate::table1::run(&opts, &indicatif::ProgressBar::hidden())?;
     #[cfg(feature = "jit")]
     rows.extend(jit_rows(&opts, &rows)?);

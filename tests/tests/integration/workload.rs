@@ -232,8 +232,7 @@ fn sl_module(shader: &WorkloadShader) -> anysl_rsl::ir::Module {
 }
 
 fn interp_shader(shader: &WorkloadShader) -> InterpShader {
-    let mut m = sl_module(shader);
-    optimize(&mut m, &PassOptions::default());
+    let m = optimize(sl_module(shader), &PassOptions::default());
     InterpShader::new(Arc::new(Program::new(m).expect("the interpreter runs the module")))
 }
 

@@ -3,6 +3,7 @@
 //! generic code it needs once). `cargo test -p anysl-tests --test rsl <module>::` runs one file.
 
 mod jit_check;
+mod jit_eval;
 mod rsl_conformance_generated;
 mod rsl_conformance_interp;
 mod rsl_generated;

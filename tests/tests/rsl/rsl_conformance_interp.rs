@@ -16,7 +16,7 @@ use anysl_simd::F32x8;
 use anysl_tests::rsl_harness::{check, grid_globals, parse_directives, Directives};
 use std::path::Path;
 
-fn param_const(v: &ParamValue) -> Option<Const> {
+pub(crate) fn param_const(v: &ParamValue) -> Option<Const> {
     Some(match v {
         ParamValue::Float(x) => Const::Float(*x),
         ParamValue::Triple(t) => Const::Triple(*t),
@@ -28,7 +28,7 @@ fn param_const(v: &ParamValue) -> Option<Const> {
 
 /// Runs `prog` on `chunks` copies of the 1×1 grid point and returns lane `lane` of chunk
 /// `chunk`'s outputs.
-fn run<F: ShadingFloat>(
+pub(crate) fn run<F: ShadingFloat>(
     prog: &Program,
     values: &[Const],
     d: &Directives,
@@ -96,8 +96,8 @@ fn conformance_suite_through_the_interpreter() {
                 continue;
             }
         };
-        let mut m = compiled.module;
-        let derivs = optimize(&mut m, &PassOptions::default()).uses_derivatives;
+        let m = optimize(compiled.module, &PassOptions::default());
+        let derivs = m.uses_derivatives();
         let prog = match Program::new(m) {
             Ok(p) => p,
             Err(e) => {
@@ -156,9 +156,8 @@ fn interpreted_lights_match_the_hand_written_ones() {
     let opts = CompileOptions { include_dirs: vec![dir.join("include")], ..CompileOptions::default() };
     let mut rng = anysl_core::points::SplitMix64(7);
     for name in ["pointlight", "distantlight", "spotlight", "ambientlight"] {
-        let mut m = anysl_rsl::compile_file(&dir.join(format!("{name}.sl")), &opts).expect("compiles").module;
-        optimize(&mut m, &PassOptions::default());
-        let prog = Arc::new(Program::new(m).expect("interpretable"));
+        let m = anysl_rsl::compile_file(&dir.join(format!("{name}.sl")), &opts).expect("compiles").module;
+        let prog = Arc::new(Program::new(optimize(m, &PassOptions::default())).expect("interpretable"));
         for setting in [None, Some(("intensity", ParamValue::Float(2.5)))] {
             let mut interp = InterpLight::new(prog.clone());
             let mut hand = Light::by_name(name).expect("hand-written light");

@@ -22,8 +22,7 @@ fn rsl_dir() -> PathBuf {
 fn interp(file: &Path) -> InterpShader {
     let opts = CompileOptions { include_dirs: vec![rsl_dir().join("include")], ..CompileOptions::default() };
     let c = anysl_rsl::compile_file(file, &opts).unwrap_or_else(|e| panic!("{}: {e}", file.display()));
-    let mut m = c.module;
-    optimize(&mut m, &PassOptions::default());
+    let m = optimize(c.module, &PassOptions::default());
     InterpShader::new(Arc::new(Program::new(m).unwrap_or_else(|e| panic!("{}: {e}", file.display()))))
 }
 

@@ -216,11 +216,12 @@ impl Alloc {
 }
 
 impl Program {
-    /// Compiles a module (run [`crate::passes::optimize`] on it first so the analyses are set).
+    /// Compiles an analyzed module ([`crate::passes::optimize`]).
     ///
     /// # Errors
     /// When the module uses an op or built-in overload the interpreter does not implement.
-    pub fn new(module: Module) -> Result<Self, PrepareError> {
+    pub fn new(module: crate::passes::Analyzed) -> Result<Self, PrepareError> {
+        let module = module.into_module();
         let mut a = Alloc { nregs: 0, nmasks: 0, nstrs: 0 };
         let func = &module.func;
         let slot_locs: Vec<Loc> = func.slots.iter().map(|s| a.loc(s.ty, false)).collect();

@@ -5,10 +5,11 @@
 //!
 //! ```
 //! use anysl_rsl::back::rust::{generate, RustOptions};
+//! use anysl_rsl::passes::{optimize, PassOptions};
 //! use anysl_rsl::{compile_source, CompileOptions};
 //! let src = "surface matte(float Kd = 1;) { Ci = Kd * Cs * diffuse(normalize(N)); }";
 //! let c = compile_source("matte.sl", src, &CompileOptions::default()).unwrap();
-//! let rust = generate(&c.module, &RustOptions::default()).unwrap();
+//! let rust = generate(&optimize(c.module, &PassOptions::default()), &RustOptions::default()).unwrap();
 //! assert!(rust.contains("pub struct Matte"));
 //! assert!(rust.contains("impl ::anysl_core::SurfaceShader for Matte"));
 //! ```
@@ -43,7 +44,7 @@ pub mod rt;
 use crate::builtins::Builtin;
 use crate::diag::{Diagnostic, Diagnostics};
 use crate::ir::{BinOp, Const, Function, Global, Module, Node, Op, ShaderKind, SlotId, SlotKind, UnOp, Value};
-use crate::passes::{optimize, PassOptions};
+use crate::passes::{optimize, Analyzed, PassOptions};
 use crate::span::{SourceMap, Span};
 use crate::types::{BaseType, Detail, Type};
 use crate::{compile_file, CompileError, CompileOptions};
@@ -60,9 +61,6 @@ pub struct RustOptions {
     pub core: String,
     /// Path of the run-time helpers ([`rt`]) in the generated code.
     pub runtime: String,
-    /// Run [`optimize`] (folding, DCE and the analyses) on a copy of the module first. Without
-    /// it the module must already carry the analyses' results.
-    pub optimize: bool,
     /// Emit a `// file:line: source` comment before the code of each source line (when the
     /// sources are known).
     pub line_comments: bool,
@@ -77,7 +75,6 @@ impl Default for RustOptions {
             type_name: None,
             core: "::anysl_core".into(),
             runtime: "::anysl_rsl::back::rust::rt".into(),
-            optimize: true,
             line_comments: true,
             prelude: true,
         }
@@ -141,7 +138,8 @@ pub fn type_name(shader: &str) -> String {
 /// The front end's diagnostics, or a generation error rendered the same way.
 pub fn generate_file(path: &Path, copts: &CompileOptions, opts: &RustOptions) -> Result<String, CompileError> {
     let c = compile_file(path, copts)?;
-    generate_with_sources(&c.module, Some(&c.sources), opts).map_err(|e| {
+    let a = optimize(c.module.clone(), &PassOptions::default());
+    generate_with_sources(&a, Some(&c.sources), opts).map_err(|e| {
         let mut diags = Diagnostics::new();
         diags.push(e.0);
         CompileError { sources: c.sources.clone(), diags }
@@ -152,7 +150,7 @@ pub fn generate_file(path: &Path, copts: &CompileOptions, opts: &RustOptions) ->
 ///
 /// # Errors
 /// A construct generated Rust cannot express (a context call inside a light-loop body).
-pub fn generate(module: &Module, opts: &RustOptions) -> Result<String, GenError> {
+pub fn generate(module: &Analyzed, opts: &RustOptions) -> Result<String, GenError> {
     generate_with_sources(module, None, opts)
 }
 
@@ -161,17 +159,11 @@ pub fn generate(module: &Module, opts: &RustOptions) -> Result<String, GenError>
 /// # Errors
 /// See [`generate`].
 pub fn generate_with_sources(
-    module: &Module,
+    module: &Analyzed,
     sources: Option<&SourceMap>,
     opts: &RustOptions,
 ) -> Result<String, GenError> {
-    let mut m = module.clone();
-    let uses_derivatives = if opts.optimize {
-        optimize(&mut m, &PassOptions::default()).uses_derivatives
-    } else {
-        m.func.insts.iter().any(|i| i.needs_derivs)
-    };
-    let mut g = Gen::new(&m, sources, opts, uses_derivatives);
+    let mut g = Gen::new(module.module(), sources, opts, module.uses_derivatives());
     g.module()?;
     Ok(g.out)
 }

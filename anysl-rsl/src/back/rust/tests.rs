@@ -6,7 +6,12 @@ use crate::{compile_source, CompileOptions};
 
 fn gen(src: &str) -> String {
     let c = compile_source("t.sl", src, &CompileOptions::default()).unwrap_or_else(|e| panic!("{e}"));
-    generate_with_sources(&c.module, Some(&c.sources), &RustOptions::default()).unwrap_or_else(|e| panic!("{e}"))
+    generate_with_sources(
+        &crate::passes::optimize(c.module.clone(), &Default::default()),
+        Some(&c.sources),
+        &RustOptions::default(),
+    )
+    .unwrap_or_else(|e| panic!("{e}"))
 }
 
 #[test]
@@ -29,6 +34,6 @@ fn uniform_branch_is_a_rust_if_and_varying_branch_a_mask() {
 fn trace_inside_illuminance_is_an_error() {
     let c = compile_source("t.sl", "surface t() { illuminance(P) { Ci += trace(P, L); } }", &CompileOptions::default())
         .unwrap();
-    let e = generate(&c.module, &RustOptions::default()).unwrap_err();
+    let e = generate(&crate::passes::optimize(c.module, &Default::default()), &RustOptions::default()).unwrap_err();
     assert!(e.to_string().contains("cannot call `trace` inside an `illuminance` body"), "{e}");
 }
