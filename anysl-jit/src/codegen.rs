@@ -3388,7 +3388,7 @@ impl<'c> Cg<'c, '_> {
             Builtin::Printf => Val::Void,
             Builtin::Match => {
                 let (p, s) = (Self::as_str(&args[0]), Self::as_str(&args[1]));
-                Val::Num(vec![self.fc(if anysl_rsl::back::rust::rt::simple_match(&p, &s) { 1.0 } else { 0.0 })])
+                Val::Num(vec![self.fc(if anysl_rt::simple_match(&p, &s) { 1.0 } else { 0.0 })])
             }
             // Outside a scene: camera rays, nothing occludes, no indirect or caustic light,
             // nothing blocks transmission (as the interpreter).

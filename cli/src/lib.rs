@@ -192,67 +192,54 @@ fn progress_bar(show: bool) -> ProgressBar {
     pb
 }
 
+/// The sequence every `bench` command follows: run the benchmark behind a progress bar (on a
+/// terminal), print its report, then write its rows as JSON to `json` when given. `note_to_stderr`
+/// keeps stdout machine-readable for commands whose report is a TSV.
+fn bench<R: serde::Serialize>(
+    run: impl FnOnce(&ProgressBar) -> Result<Vec<R>, String>,
+    report: impl FnOnce(&[R]),
+    json: Option<PathBuf>,
+    note_to_stderr: bool,
+) -> Result<(), String> {
+    let pb = progress_bar(std::io::IsTerminal::is_terminal(&std::io::stderr()));
+    let rows = run(&pb)?;
+    pb.finish_and_clear();
+    report(&rows);
+    if let Some(path) = json {
+        let text = serde_json::to_string_pretty(&rows).map_err(|e| e.to_string())?;
+        std::fs::write(&path, text).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+        if note_to_stderr {
+            eprintln!("rows written to {}", path.display());
+        } else {
+            println!("rows written to {}", path.display());
+        }
+    }
+    Ok(())
+}
+
 fn bench_kernels(opts: kernels::KernelOpts, json: Option<PathBuf>) -> Result<(), String> {
     if opts.points == 0 {
         return Err("--points must be at least 1".into());
     }
-    let pb = progress_bar(std::io::IsTerminal::is_terminal(&std::io::stderr()));
-    let rows = kernels::run(&opts, &pb)?;
-    pb.finish_and_clear();
-    kernels::print_table(&rows);
-    println!();
-    println!("mean speedup over f32 (arithmetic / geometric), {} points, median of {} runs:", opts.points, opts.runs);
-    for (inst, am, gm) in kernels::summary(&rows) {
-        println!("  {inst:<13} {am:>6.2}x / {gm:>6.2}x");
-    }
-    if let Some(path) = json {
-        let text = serde_json::to_string_pretty(&rows).map_err(|e| e.to_string())?;
-        std::fs::write(&path, text).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
-        println!("rows written to {}", path.display());
-    }
-    Ok(())
-}
-
-fn bench_table1(opts: &table1::Table1Opts, json: Option<PathBuf>) -> Result<(), String> {
-    let pb = progress_bar(std::io::IsTerminal::is_terminal(&std::io::stderr()));
-    let rows = table1::run(opts, &pb)?;
-    pb.finish_and_clear();
-    table1::report(&rows, opts);
-    if let Some(path) = json {
-        let text = serde_json::to_string_pretty(&rows).map_err(|e| e.to_string())?;
-        std::fs::write(&path, text).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
-        println!("rows written to {}", path.display());
-    }
-    Ok(())
-}
-
-fn bench_workload(opts: &workload::WorkloadOpts, json: Option<PathBuf>) -> Result<(), String> {
-    let pb = progress_bar(std::io::IsTerminal::is_terminal(&std::io::stderr()));
-    let rows = workload::run(opts, &pb)?;
-    pb.finish_and_clear();
-    workload::print_tsv(&rows);
-    if let Some(path) = json {
-        let text = serde_json::to_string_pretty(&rows).map_err(|e| e.to_string())?;
-        std::fs::write(&path, text).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
-        eprintln!("rows written to {}", path.display());
-    }
-    Ok(())
+    let report = |rows: &[kernels::KernelRow]| {
+        kernels::print_table(rows);
+        println!();
+        println!(
+            "mean speedup over f32 (arithmetic / geometric), {} points, median of {} runs:",
+            opts.points, opts.runs
+        );
+        for (inst, am, gm) in kernels::summary(rows) {
+            println!("  {inst:<13} {am:>6.2}x / {gm:>6.2}x");
+        }
+    };
+    bench(|pb| kernels::run(&opts, pb), report, json, false)
 }
 
 fn bench_interp(opts: &interp_bench::InterpOpts, json: Option<PathBuf>) -> Result<(), String> {
     if opts.points == 0 {
         return Err("--points must be at least 1".into());
     }
-    let pb = progress_bar(std::io::IsTerminal::is_terminal(&std::io::stderr()));
-    let rows = interp_bench::run(opts, &pb)?;
-    pb.finish_and_clear();
-    interp_bench::print_table(&rows);
-    if let Some(path) = json {
-        let text = serde_json::to_string_pretty(&rows).map_err(|e| e.to_string())?;
-        std::fs::write(&path, text).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
-        println!("rows written to {}", path.display());
-    }
-    Ok(())
+    bench(|pb| interp_bench::run(opts, pb), |rows| interp_bench::print_table(rows), json, false)
 }
 
 /// Parses the command line and runs the command.
@@ -282,28 +269,22 @@ pub fn main() -> ExitCode {
             BenchCommand::Jit { json, points, runs, compiles, shaders } => {
                 let opts =
                     jit::JitBenchOpts { points: points.max(16), runs: runs.max(1), compiles: compiles.max(1), shaders };
-                jit::bench(&opts).and_then(|rows| {
-                    jit::print_table(&rows);
-                    match json {
-                        Some(path) => {
-                            let text = serde_json::to_string_pretty(&rows).map_err(|e| e.to_string())?;
-                            std::fs::write(&path, text).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
-                            println!("rows written to {}", path.display());
-                            Ok(())
-                        }
-                        None => Ok(()),
-                    }
-                })
+                bench(|_| jit::bench(&opts), |rows| jit::print_table(rows), json, false)
             }
             BenchCommand::Kernels { json, points, runs, shaders, instantiations } => {
                 bench_kernels(kernels::KernelOpts { points, runs, shaders, instantiations }, json)
             }
-            BenchCommand::Table1 { threads, json, size, runs, shaders } => bench_table1(
-                &table1::Table1Opts { size, runs: runs as usize, threads: threads.map_or(0, |t| t as usize), shaders },
-                json,
-            ),
-            BenchCommand::Workload { threads, json, runs, shaders, systems } => bench_workload(
-                &workload::WorkloadOpts {
+            BenchCommand::Table1 { threads, json, size, runs, shaders } => {
+                let opts = table1::Table1Opts {
+                    size,
+                    runs: runs as usize,
+                    threads: threads.map_or(0, |t| t as usize),
+                    shaders,
+                };
+                bench(|pb| table1::run(&opts, pb), |rows| table1::report(rows, &opts), json, false)
+            }
+            BenchCommand::Workload { threads, json, runs, shaders, systems } => {
+                let opts = workload::WorkloadOpts {
                     threads: if threads.is_empty() {
                         vec![1, 2]
                     } else {
@@ -312,9 +293,9 @@ pub fn main() -> ExitCode {
                     runs: runs as usize,
                     shaders,
                     systems,
-                },
-                json,
-            ),
+                };
+                bench(|pb| workload::run(&opts, pb), |rows| workload::print_tsv(rows), json, true)
+            }
             BenchCommand::Interp { json, points, runs, shaders } => {
                 bench_interp(&interp_bench::InterpOpts { points, runs: runs as usize, shaders }, json)
             }

@@ -1,5 +1,5 @@
-//! `anysl bench workload`: the shared shading workload (`shared/bench/shading_workload.md`,
-//! copied to `shaders/assets/workload_ref/`) — its four shaders over the 183 020 hit points
+//! `anysl bench workload`: the shared shading workload (`shaders/assets/workload_ref/shading_workload.md`)
+//! — its four shaders over the 183 020 hit points
 //! of the 512×512 sphere image, one row per shader × thread count × system, printed as the
 //! document's §9 TSV.
 //!

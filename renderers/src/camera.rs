@@ -272,7 +272,7 @@ mod tests {
 
     #[test]
     fn workload_camera_matches_the_spec() {
-        // shared/bench/shading_workload.md §1: sx = ((col + 0.5)·2/512 − 1)·0.375, …
+        // shaders/assets/workload_ref/shading_workload.md §1: sx = ((col + 0.5)·2/512 − 1)·0.375, …
         let cam = Camera::new(Vec3A::new(0.0, 0.0, 3.0), Vec3A::ZERO, Vec3A::Y, 2.0 * 0.375f32.atan(), 512, 512);
         for (col, row) in [(0u32, 0u32), (100, 300), (511, 511)] {
             let sx = ((col as f32 + 0.5) * (2.0 / 512.0) - 1.0) * 0.375;

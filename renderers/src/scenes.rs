@@ -18,7 +18,7 @@ pub fn bunny_mesh() -> Mesh {
     Mesh::from_obj(BUNNY_OBJ, "assets/bunny.obj").expect("the embedded bunny parses")
 }
 
-/// The AnySL paper's Table 1 setup (and `shared/bench/shading_workload.md`): one
+/// The AnySL paper's Table 1 setup (and `shaders/assets/workload_ref/shading_workload.md`): one
 /// triangulated unit sphere (64 × 32 segments) at the origin, seen from (0, 0, 3) looking at
 /// the origin with a vertical field of view of 2·atan(0.375), `size × size` pixels (512 in
 /// the paper), black background. The workload's two point lights come from the shader

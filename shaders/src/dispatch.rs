@@ -250,11 +250,11 @@ impl LightShader for Light {
     }
 }
 
-/// Ambient colour of the Table 1 scene (`shared/bench/shading_workload.md` §3).
+/// Ambient colour of the Table 1 scene (`shaders/assets/workload_ref/shading_workload.md` §3).
 pub const TABLE1_AMBIENT: [f64; 3] = [0.08, 0.08, 0.10];
 
 /// The lights of the paper's Table 1 scene as the shading workload defines them
-/// (`shared/bench/shading_workload.md` §3): two point lights at (−3, 4, 5) with colour
+/// (`shaders/assets/workload_ref/shading_workload.md` §3): two point lights at (−3, 4, 5) with colour
 /// (0.90, 0.85, 0.80) and at (4, −1.5, 3) with colour (0.25, 0.30, 0.45), and an ambient
 /// light of (0.08, 0.08, 0.10).
 ///

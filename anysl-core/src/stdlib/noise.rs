@@ -2,7 +2,7 @@
 //!
 //! The core is Perlin's "improved noise" (2002) with the permutation table replaced by an
 //! integer hash computed on the fly (Teschner et al. spatial-hash primes, then Wellons'
-//! `lowbias32` finaliser), exactly as in `shared/bench/shading_workload.md` §4, so it
+//! `lowbias32` finaliser), exactly as in `shaders/assets/workload_ref/shading_workload.md` §4, so it
 //! vectorizes and needs no memory. Lattice coordinates are the `i32` bit patterns of
 //! `floor(x)`: the hash sees exact integers at any magnitude (no float-multiply hash that
 //! loses bits at 1e7), and the fractional part is taken before hashing, so detail is kept
@@ -18,16 +18,30 @@ use super::math::{clamp, fmod};
 use crate::float::{LatticeBits, Mask, PureFn, ShadingFloat};
 use crate::vec::{Color, Vec3};
 
-/// Hash multipliers per lattice axis (x, y, z, w) and for the seed.
-const PRIMES: [u32; 5] = [73856093, 19349663, 83492791, 2654435761, 0x27d4_eb2d];
+/// The constants of the lattice hash, public so that code generators emitting the same noise
+/// (the JIT's inline noise) use these values rather than copies.
+pub mod lattice {
+    /// Hash multipliers per lattice axis (x, y, z, w) and for the seed.
+    pub const PRIMES: [u32; 5] = [73856093, 19349663, 83492791, 2654435761, 0x27d4_eb2d];
+    /// The two multipliers of the `lowbias32` finaliser.
+    pub const FINALIZE: [u32; 2] = [0x7FEB_352D, 0x846C_A68B];
+    /// Seed of `cellnoise`.
+    pub const CELL_SEED: u32 = 0x0c31_1ced;
+    /// The period of the lattice hash along each axis: it sees lattice coordinates as u32.
+    pub const HASH_PERIOD: f64 = 4_294_967_296.0;
+    /// Seeds of the components of vector-valued noise (`vnoise`, `vsnoise`, `vcellnoise`).
+    pub const VECTOR_SEEDS: [u32; 3] = [0, 0x5bd1_e995, 0x1b87_3593];
+}
+pub use lattice::VECTOR_SEEDS;
+use lattice::{CELL_SEED, FINALIZE, HASH_PERIOD, PRIMES};
 
 /// `lowbias32` finaliser.
 #[inline(always)]
 fn finalize<B: LatticeBits>(mut h: B) -> B {
     h = h ^ (h >> 16);
-    h = h.wrapping_mul(B::splat(0x7FEB_352D));
+    h = h.wrapping_mul(B::splat(FINALIZE[0]));
     h = h ^ (h >> 15);
-    h = h.wrapping_mul(B::splat(0x846C_A68B));
+    h = h.wrapping_mul(B::splat(FINALIZE[1]));
     h ^ (h >> 16)
 }
 
@@ -83,9 +97,6 @@ pub fn fade<F: ShadingFloat>(t: F) -> F {
 fn lerp<F: ShadingFloat>(t: F, a: F, b: F) -> F {
     a + t * (b - a)
 }
-
-/// The period of the lattice hash along each axis: it sees lattice coordinates as u32.
-const HASH_PERIOD: f64 = 4_294_967_296.0;
 
 /// `x` reduced modulo the hash period into [-2^31, 2^31] (`x - 2^32·round(x/2^32)`, exact in
 /// binary floating point), so that `floor` of it is a valid i32 whose bits are those of
@@ -184,9 +195,6 @@ fn perlin4_at<F: ShadingFloat>(p: Vec3<F>, t: F, period: Option<(Vec3<F>, F)>, s
     // The 4D corner gradients have length 2 (vs √2 in 3D); scale to the same range.
     lerp(r, slice(l0, fw), slice(l1, fw - one)) * F::c(0.5)
 }
-
-/// Seeds of the three components of vector-valued noise.
-pub const VECTOR_SEEDS: [u32; 3] = [0, 0x5bd1_e995, 0x1b87_3593];
 
 /// Where a noise is evaluated: 1D to 4D, as RSL's overloads of `noise(…)` take it.
 #[derive(Clone, Copy, Debug)]
@@ -424,7 +432,7 @@ fn cell_bits<F: ShadingFloat>(d: NoiseDomain<F>) -> ([F::Bits; 4], usize) {
 #[must_use]
 pub fn cellnoise<F: ShadingFloat>(d: NoiseDomain<F>) -> F {
     let (c, n) = cell_bits(d);
-    F::bits_to_unit(lattice_hash(&c[..n], 0x0c31_1ced))
+    F::bits_to_unit(lattice_hash(&c[..n], CELL_SEED))
 }
 
 /// RSL `cellnoise` returning a point/colour: three independent values in [0, 1).
@@ -432,7 +440,7 @@ pub fn cellnoise<F: ShadingFloat>(d: NoiseDomain<F>) -> F {
 #[must_use]
 pub fn vcellnoise<F: ShadingFloat>(d: NoiseDomain<F>) -> Vec3<F> {
     let (c, n) = cell_bits(d);
-    let v = |s: u32| F::bits_to_unit(lattice_hash(&c[..n], 0x0c31_1ced ^ s));
+    let v = |s: u32| F::bits_to_unit(lattice_hash(&c[..n], CELL_SEED ^ s));
     Vec3::new(v(VECTOR_SEEDS[0]), v(VECTOR_SEEDS[1]), v(VECTOR_SEEDS[2]))
 }
 

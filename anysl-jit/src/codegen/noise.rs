@@ -9,14 +9,7 @@ use super::{Cg, Repr, M, S};
 use inkwell::values::BasicValueEnum;
 use inkwell::{FloatPredicate, IntPredicate};
 
-/// Hash multipliers per lattice axis (x, y, z, w) and for the seed (as in anysl-core).
-const PRIMES: [u32; 5] = [73_856_093, 19_349_663, 83_492_791, 2_654_435_761, 0x27d4_eb2d];
-/// Seeds of the components of vector-valued noise (as in anysl-core).
-const VECTOR_SEEDS: [u32; 3] = [0, 0x5bd1_e995, 0x1b87_3593];
-/// Seed of `cellnoise` (as in anysl-core).
-const CELL_SEED: u32 = 0x0c31_1ced;
-/// The lattice hash's period along each axis.
-const HASH_PERIOD: f64 = 4_294_967_296.0;
+use anysl_core::stdlib::lattice::{CELL_SEED, FINALIZE, HASH_PERIOD, PRIMES, VECTOR_SEEDS};
 
 /// Which member of the family.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -187,9 +180,9 @@ impl<'c> Cg<'c, '_> {
             h = self.ibin('^', h, self.ibin('*', ci, self.iconst(ci, PRIMES[axis])));
         }
         h = self.ibin('^', h, self.ibin('>', h, self.iconst(h, 16)));
-        h = self.ibin('*', h, self.iconst(h, 0x7FEB_352D));
+        h = self.ibin('*', h, self.iconst(h, FINALIZE[0]));
         h = self.ibin('^', h, self.ibin('>', h, self.iconst(h, 15)));
-        h = self.ibin('*', h, self.iconst(h, 0x846C_A68B));
+        h = self.ibin('*', h, self.iconst(h, FINALIZE[1]));
         self.ibin('^', h, self.ibin('>', h, self.iconst(h, 16)))
     }
 

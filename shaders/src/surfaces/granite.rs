@@ -10,7 +10,7 @@ anysl_core::shader_params! {
     /// (the classic `|0.5 - noise(f·PP)|/f` is half of each term, absorbed in `contrast`),
     /// `Ct = Cs·mix(darkcolor, lightcolor, clamp(contrast·sum, 0, 1))`, plastic lighting.
     /// The defaults (apart from roughness 0.1) are the granite of the shading workload
-    /// (`shared/bench/shading_workload.md` §5(d)); with `roughness = 0.08` and its lights it
+    /// (`shaders/assets/workload_ref/shading_workload.md` §5(d)); with `roughness = 0.08` and its lights it
     /// reproduces that reference image.
     pub struct Granite: surface "granite" {
         /// Ambient coefficient.

@@ -6,7 +6,7 @@ use anysl_core::GlobalSet;
 
 anysl_core::shader_params! {
     /// Classic solid wood (after the RenderMan Companion / BMRT `wood`), as in the shading
-    /// workload (`shared/bench/shading_workload.md` §5(c)):
+    /// workload (`shaders/assets/workload_ref/shading_workload.md` §5(c)):
     /// `r = ringscale·√(x² + y²) + 1.5·snoise(2P + (0.375, 1.25, 2.625))`,
     /// `ring = smoothstep(0, 0.8, f) - smoothstep(0.83, 1, f)` with `f = r - floor(r)`,
     /// `grain = 0.8 + 0.2·snoise(grainscale·x, grainscale·y, grainscale/32·z)`,

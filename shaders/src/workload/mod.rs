@@ -1,5 +1,5 @@
-//! The shared shading workload (`shared/bench/shading_workload.md`, copied to
-//! `shaders/assets/workload_ref/`): one 512×512 image of the unit sphere under two point lights,
+//! The shared shading workload (`shaders/assets/workload_ref/shading_workload.md`, a copy of
+//! the shared benchmark document): one 512×512 image of the unit sphere under two point lights,
 //! four shaders, reference images computed in f64. Any shading system that follows the document
 //! computes the same image up to rounding, so systems can be compared on it.
 //!

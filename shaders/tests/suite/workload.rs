@@ -1,4 +1,4 @@
-//! The shading workload (`shared/bench/shading_workload.md`): the generic plastic, wood and
+//! The shading workload (`shaders/assets/workload_ref/shading_workload.md`): the generic plastic, wood and
 //! granite with the workload's coefficients and [`table1_lights`] reproduce its float64
 //! reference images, instantiated with f32, within the workload's bound of 1e-4.
 

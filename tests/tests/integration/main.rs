@@ -3,6 +3,7 @@
 //! `cargo test -p anysl-tests --test integration <module>::` runs one file's tests.
 
 mod control_flow;
+mod docs_links;
 mod instantiations;
 mod renderers_agree;
 mod stability;

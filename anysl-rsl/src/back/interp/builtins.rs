@@ -731,7 +731,7 @@ pub fn call<F: ShadingFloat, C: ShadingContext<F>>(
             // maps are RGB, so channels past blue (alpha) read the "fill" value, 1 by default
             // for a map that exists (opaque) and 0 for a missing one.
             let mut first = 0usize;
-            let mut fill = if texture::exists(&name) { F::c(1.0) } else { F::c(0.0) };
+            let mut fill = if anysl_rt::texture::exists(&name) { F::c(1.0) } else { F::c(0.0) };
             let opts = args.get(1 + coords as usize..).unwrap_or(&[]);
             for pair in opts.chunks(2) {
                 if let [n, val] = pair {
@@ -797,7 +797,7 @@ pub fn call<F: ShadingFloat, C: ShadingContext<F>>(
 
 /// `format`/`printf` through the one formatter generated Rust uses too.
 fn format_rsl<F: ShadingFloat>(fr: &Frame<F>, args: &[Loc], k: usize) -> String {
-    use crate::back::rust::rt::FmtArg;
+    use anysl_rt::FmtArg;
     let fmt = space_str(fr, args[0]).to_string();
     let rest: Vec<FmtArg> = args[1..]
         .iter()
@@ -808,9 +808,9 @@ fn format_rsl<F: ShadingFloat>(fr: &Frame<F>, args: &[Loc], k: usize) -> String 
             Loc::None => FmtArg::Str(String::new()),
         })
         .collect();
-    crate::back::rust::rt::format_rsl(&fmt, &rest)
+    anysl_rt::format_rsl(&fmt, &rest)
 }
 
 fn simple_match(pat: &str, subj: &str) -> bool {
-    crate::back::rust::rt::simple_match(pat, subj)
+    anysl_rt::simple_match(pat, subj)
 }

@@ -806,8 +806,9 @@ fn set_param_of(m: &Module, values: &mut [Const], name: &str, value: &ParamValue
     Ok(())
 }
 
-/// A surface (or displacement) shader run by the interpreter: a shader like any other behind
-/// the [`SurfaceShader`] boundary.
+/// A shader run by the interpreter — surface, displacement or light ([`InterpLight`]): a
+/// shader like any other behind the [`SurfaceShader`], [`DisplacementShader`] and
+/// [`LightShader`] boundaries.
 #[derive(Clone, Debug)]
 pub struct InterpShader {
     /// The compiled program (shared between instances).
@@ -901,36 +902,9 @@ impl DisplacementShader for InterpShader {
     }
 }
 
-/// A light shader run by the interpreter.
-#[derive(Clone, Debug)]
-pub struct InterpLight {
-    /// The compiled program.
-    pub program: Arc<Program>,
-    /// This instance's parameter values.
-    pub values: Vec<Const>,
-}
-
-impl InterpLight {
-    /// An instance with the default parameter values.
-    #[must_use]
-    pub fn new(program: Arc<Program>) -> Self {
-        let values = program.module.params.iter().map(|p| p.default.clone()).collect();
-        Self { program, values }
-    }
-}
-
-impl Shader for InterpLight {
-    fn meta(&self) -> ShaderMeta {
-        meta_of(&self.program.module, self.program.uses_derivatives)
-    }
-    fn param(&self, name: &str) -> Option<ParamValue> {
-        let i = self.program.module.params.iter().position(|p| p.name == name)?;
-        Some(to_param_value(&self.values[i]))
-    }
-    fn set_param(&mut self, name: &str, value: &ParamValue) -> Result<(), ParamError> {
-        set_param_of(&self.program.module, &mut self.values, name, value)
-    }
-}
+/// A light shader run by the interpreter: the same type as [`InterpShader`] (a program and
+/// its parameter values); the program's kind decides which shader trait it is used through.
+pub type InterpLight = InterpShader;
 
 /// The context a light shader runs in: only `Ps` is known.
 struct LightCtx<F: ShadingFloat> {
@@ -958,7 +932,7 @@ impl<F: ShadingFloat> ShadingContext<F> for LightCtx<F> {
     }
 }
 
-impl LightShader for InterpLight {
+impl LightShader for InterpShader {
     fn category(&self) -> &str {
         match self.program.module.params.iter().position(|p| p.name == "__category").map(|i| &self.values[i]) {
             Some(Const::Str(s)) => s,

@@ -39,8 +39,6 @@
 //!   [`INTERVAL_LOOP_LIMIT`](anysl_core::INTERVAL_LOOP_LIMIT) iterations (without the widened
 //!   last pass of `Exec::loop_`).
 
-pub mod rt;
-
 use crate::builtins::Builtin;
 use crate::diag::{Diagnostic, Diagnostics};
 use crate::ir::{BinOp, Const, Function, Global, Module, Node, Op, ShaderKind, SlotId, SlotKind, UnOp, Value};
@@ -59,7 +57,7 @@ pub struct RustOptions {
     pub type_name: Option<String>,
     /// Path of `anysl_core` in the generated code.
     pub core: String,
-    /// Path of the run-time helpers ([`rt`]) in the generated code.
+    /// Path of the run-time library (`anysl_rt`) in the generated code.
     pub runtime: String,
     /// Emit a `// file:line: source` comment before the code of each source line (when the
     /// sources are known).
@@ -74,7 +72,7 @@ impl Default for RustOptions {
         Self {
             type_name: None,
             core: "::anysl_core".into(),
-            runtime: "::anysl_rsl::back::rust::rt".into(),
+            runtime: "::anysl_rt".into(),
             line_comments: true,
             prelude: true,
         }
