@@ -1,12 +1,19 @@
 //! Shader parameter defaults: compile-time evaluation of the default expressions to
-//! [`Const`](crate::ir::Const)s (literals, triples, matrices, casts with a space, unary minus,
-//! arithmetic, the pure math built-ins and earlier parameters), and the zero of a type.
+//! [`Const`]s (literals, triples, matrices, casts with a space, unary minus, arithmetic, the
+//! pure math built-ins and earlier parameters), and the zero of a type.
+//!
+//! This is the front end's view of the compiler's one constant evaluator: it types the
+//! expression and reports what is not constant, while the arithmetic and the built-ins are
+//! computed by the constant folder ([`fold::componentwise`], [`fold::eval_builtin`]) on the
+//! component helpers of [`Const`].
 
 use super::an;
-use super::typing::{assignable, binary_type};
+use super::typing::{assignable, binary_type, binop};
+use crate::builtins::Builtin;
 use crate::diag::{codes, Diagnostic};
 use crate::front::ast::{BinaryOp, Expr, ExprKind, UnaryOp};
 use crate::ir::Const;
+use crate::passes::fold;
 use crate::types::{BaseType, Type};
 use std::collections::HashMap;
 
@@ -23,6 +30,30 @@ pub(super) fn zero_const(ty: Type) -> Const {
         None => one,
     }
 }
+
+/// The built-ins a default may call, with their argument counts; every argument is a float.
+const DEFAULT_BUILTINS: &[(Builtin, usize)] = &[
+    (Builtin::Radians, 1),
+    (Builtin::Degrees, 1),
+    (Builtin::Sin, 1),
+    (Builtin::Cos, 1),
+    (Builtin::Tan, 1),
+    (Builtin::Asin, 1),
+    (Builtin::Acos, 1),
+    (Builtin::Atan, 1),
+    (Builtin::Atan, 2),
+    (Builtin::Sqrt, 1),
+    (Builtin::Exp, 1),
+    (Builtin::Log, 1),
+    (Builtin::Abs, 1),
+    (Builtin::Floor, 1),
+    (Builtin::Ceil, 1),
+    (Builtin::Round, 1),
+    (Builtin::Pow, 2),
+    (Builtin::Min, 2),
+    (Builtin::Max, 2),
+    (Builtin::Mod, 2),
+];
 
 /// Compile-time evaluation of shader parameter defaults.
 pub(super) struct ConstEval<'e> {
@@ -77,7 +108,7 @@ impl ConstEval<'_> {
             );
             return None;
         }
-        Some(promote(c, ty.base))
+        Some(c.promote(ty.base))
     }
 
     fn non_constant(&mut self, e: &Expr, what: &str) -> Option<(Const, BaseType)> {
@@ -107,7 +138,7 @@ impl ConstEval<'_> {
             },
             ExprKind::Unary(UnaryOp::Neg, a) => {
                 let (c, b) = self.eval(a, expected, space)?;
-                Some((map_comps(&c, |x| -x)?, b))
+                Some((c.map_components(|x| -x)?, b))
             }
             ExprKind::Binary(op, a, b)
                 if matches!(op, BinaryOp::Add | BinaryOp::Sub | BinaryOp::Mul | BinaryOp::Div) =>
@@ -128,16 +159,11 @@ impl ConstEval<'_> {
                 if t == Matrix && (tx == Matrix && ty == Matrix) && matches!(op, BinaryOp::Mul | BinaryOp::Div) {
                     return self.non_constant(e, "a matrix product");
                 }
-                let f = |p: f64, q: f64| match op {
-                    BinaryOp::Add => p + q,
-                    BinaryOp::Sub => p - q,
-                    BinaryOp::Mul => p * q,
-                    _ => p / q,
-                };
-                let xs = comps(&promote(x, t))?;
-                let ys = comps(&promote(y, t))?;
-                let v: Vec<f64> = xs.iter().zip(&ys).map(|(p, q)| f(*p, *q)).collect();
-                Some((from_comps(t, &v)?, t))
+                // Both operands promoted to the result type, then component by component (a
+                // matrix with a float too: the float on the diagonal).
+                let xs = x.promote(t).components()?;
+                let ys = y.promote(t).components()?;
+                Some((Const::from_components(t, &fold::componentwise(binop(*op), &xs, &ys))?, t))
             }
             ExprKind::Triple(items) => {
                 let base = expected.filter(|t| t.is_triple()).unwrap_or(Point);
@@ -180,7 +206,7 @@ impl ConstEval<'_> {
                     );
                     return None;
                 }
-                let c = promote(c, *to);
+                let c = c.promote(*to);
                 let Some(sp) = sp else { return Some((c, *to)) };
                 let ExprKind::Str(name) = &sp.kind else {
                     return self.non_constant(sp, "a computed space name");
@@ -212,85 +238,16 @@ impl ConstEval<'_> {
                 for a in args {
                     vals.push(self.eval(a, None, space)?);
                 }
-                let f = |v: &[(Const, BaseType)], i: usize| match v.get(i) {
-                    Some((Const::Float(x), _)) => Some(*x),
-                    _ => None,
-                };
-                let r = match (name.name.as_str(), vals.len()) {
-                    ("radians", 1) => f(&vals, 0).map(f64::to_radians),
-                    ("degrees", 1) => f(&vals, 0).map(f64::to_degrees),
-                    ("sin", 1) => f(&vals, 0).map(f64::sin),
-                    ("cos", 1) => f(&vals, 0).map(f64::cos),
-                    ("tan", 1) => f(&vals, 0).map(f64::tan),
-                    ("asin", 1) => f(&vals, 0).map(f64::asin),
-                    ("acos", 1) => f(&vals, 0).map(f64::acos),
-                    ("atan", 1) => f(&vals, 0).map(f64::atan),
-                    ("atan", 2) => f(&vals, 0).zip(f(&vals, 1)).map(|(y, x)| y.atan2(x)),
-                    ("sqrt", 1) => f(&vals, 0).map(f64::sqrt),
-                    ("exp", 1) => f(&vals, 0).map(f64::exp),
-                    ("log", 1) => f(&vals, 0).map(f64::ln),
-                    ("abs", 1) => f(&vals, 0).map(f64::abs),
-                    ("floor", 1) => f(&vals, 0).map(f64::floor),
-                    ("ceil", 1) => f(&vals, 0).map(f64::ceil),
-                    ("round", 1) => f(&vals, 0).map(f64::round),
-                    ("pow", 2) => f(&vals, 0).zip(f(&vals, 1)).map(|(x, y)| x.powf(y)),
-                    ("min", 2) => f(&vals, 0).zip(f(&vals, 1)).map(|(x, y)| x.min(y)),
-                    ("max", 2) => f(&vals, 0).zip(f(&vals, 1)).map(|(x, y)| x.max(y)),
-                    ("mod", 2) => f(&vals, 0).zip(f(&vals, 1)).map(|(x, y)| x - y * (x / y).floor()),
-                    _ => None,
-                };
+                let builtin = Builtin::from_name(&name.name).filter(|b| DEFAULT_BUILTINS.contains(&(*b, vals.len())));
+                let floats: Option<Vec<Const>> =
+                    vals.into_iter().map(|(c, _)| matches!(c, Const::Float(_)).then_some(c)).collect();
+                let r = builtin.zip(floats).and_then(|(b, consts)| fold::eval_builtin(b, Float, &consts));
                 match r {
-                    Some(x) => Some((Const::Float(x), Float)),
+                    Some(c) => Some((c, Float)),
                     None => self.non_constant(e, &format!("a call of `{}`", name.name)),
                 }
             }
             _ => self.non_constant(e, "this expression"),
         }
-    }
-}
-
-fn comps(c: &Const) -> Option<Vec<f64>> {
-    match c {
-        Const::Float(x) => Some(vec![*x]),
-        Const::Triple(v) => Some(v.to_vec()),
-        Const::Matrix(m) => Some(m.to_vec()),
-        _ => None,
-    }
-}
-
-fn from_comps(t: BaseType, v: &[f64]) -> Option<Const> {
-    match (t, v.len()) {
-        (BaseType::Float, 1) => Some(Const::Float(v[0])),
-        (t, 3) if t.is_triple() => Some(Const::Triple([v[0], v[1], v[2]])),
-        (BaseType::Matrix, 16) => {
-            let mut m = [0.0; 16];
-            m.copy_from_slice(v);
-            Some(Const::Matrix(m))
-        }
-        _ => None,
-    }
-}
-
-fn map_comps(c: &Const, f: impl Fn(f64) -> f64) -> Option<Const> {
-    match c {
-        Const::Float(x) => Some(Const::Float(f(*x))),
-        Const::Triple(v) => Some(Const::Triple(v.map(&f))),
-        Const::Matrix(m) => Some(Const::Matrix(m.map(&f))),
-        _ => None,
-    }
-}
-
-/// Promotes a float constant to a triple or matrix (diagonal).
-fn promote(c: Const, to: BaseType) -> Const {
-    match (c, to) {
-        (Const::Float(x), t) if t.is_triple() => Const::Triple([x; 3]),
-        (Const::Float(x), BaseType::Matrix) => {
-            let mut m = [0.0; 16];
-            for i in 0..4 {
-                m[i * 5] = x;
-            }
-            Const::Matrix(m)
-        }
-        (c, _) => c,
     }
 }
