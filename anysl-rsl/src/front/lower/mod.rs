@@ -30,17 +30,17 @@
 //!
 //! # Files
 //!
-//! * this module: the [`Lowerer`] state, the entry point [`lower_unit`], the shader (its
+//! * this module: the `Lowerer` state, the entry point `lower_unit`, the shader (its
 //!   parameters and body), diagnostics and the wording of types in them, and the helpers that
 //!   build IR (instructions, constants, slots, blocks);
-//! * [`scope`]: scopes, name look-up, and the loop and frame contexts;
-//! * [`typing`]: the type rules of operators, assignments and globals;
-//! * [`stmt`]: statements and declarations;
-//! * [`expr`]: expressions;
-//! * [`place`]: assignable places, assignments and indexing;
-//! * [`call`]: built-in and user function calls, overload resolution and its diagnostics;
-//! * [`inline`]: inlining of user functions, the missing-`return` check, uncalled functions;
-//! * [`defaults`]: compile-time evaluation of parameter defaults.
+//! * `scope.rs`: scopes, name look-up, and the loop and frame contexts;
+//! * `typing.rs`: the type rules of operators, assignments and globals;
+//! * `stmt.rs`: statements and declarations;
+//! * `expr.rs`: expressions;
+//! * `place.rs`: assignable places, assignments and indexing;
+//! * `call.rs`: built-in and user function calls, overload resolution and its diagnostics;
+//! * `inline.rs`: inlining of user functions, the missing-`return` check, uncalled functions;
+//! * `defaults.rs`: compile-time evaluation of parameter defaults.
 
 mod call;
 mod defaults;
