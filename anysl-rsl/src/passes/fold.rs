@@ -2,7 +2,7 @@
 //!
 //! The evaluation of ops on constants here is the compiler's one constant evaluator: besides
 //! folding IR instructions, the front end evaluates shader parameter defaults with its
-//! element-wise arithmetic ([`componentwise`]) and its math built-ins ([`eval_builtin`]), on
+//! element-wise arithmetic (`componentwise`) and its math built-ins (`eval_builtin`), on
 //! the [`Const`] component helpers ([`Const::components`], [`Const::from_components`],
 //! [`Const::promote`]).
 

@@ -26,7 +26,9 @@
 //! * **Parameter defaults** are evaluated to [`Const`]s by [`ConstEval`]: literals, triples,
 //!   casts, unary minus, arithmetic, the pure math built-ins and earlier parameters. A
 //!   point-like default in a named space keeps the space in [`ParamMeta::space`]; a colour in a
-//!   named colour space is converted to RGB at compile time.
+//!   named colour space is converted to RGB at compile time. The arithmetic and the built-ins
+//!   are computed by the constant folder ([`passes::fold`](crate::passes::fold)), the one
+//!   constant evaluator of the compiler.
 //!
 //! # Files
 //!
