@@ -51,6 +51,85 @@ pub enum Const {
     Array(Vec<Const>),
 }
 
+impl Const {
+    /// The const of type `float` holding `x`.
+    #[must_use]
+    pub fn float(x: f64) -> Self {
+        Const::Float(x)
+    }
+
+    /// The components of a float (one), a triple (three) or a matrix (sixteen, row-major);
+    /// `None` for a string or an array.
+    #[must_use]
+    pub fn components(&self) -> Option<Vec<f64>> {
+        match self {
+            Const::Float(x) => Some(vec![*x]),
+            Const::Triple(t) => Some(t.to_vec()),
+            Const::Matrix(m) => Some(m.to_vec()),
+            Const::Str(_) | Const::Array(_) => None,
+        }
+    }
+
+    /// The constant of base type `base` with components `v` (the inverse of
+    /// [`components`](Self::components)): a float from one component, a triple of any kind from
+    /// three, a matrix from sixteen; `None` when the count does not fit `base`.
+    #[must_use]
+    pub fn from_components(base: BaseType, v: &[f64]) -> Option<Const> {
+        match (base, v.len()) {
+            (BaseType::Float, 1) => Some(Const::Float(v[0])),
+            (b, 3) if b.is_triple() => Some(Const::Triple([v[0], v[1], v[2]])),
+            (BaseType::Matrix, 16) => {
+                let mut m = [0.0; 16];
+                m.copy_from_slice(v);
+                Some(Const::Matrix(m))
+            }
+            _ => None,
+        }
+    }
+
+    /// A float, triple or matrix with `f` applied to each component (keeping its shape);
+    /// `None` for a string or an array.
+    #[must_use]
+    pub fn map_components(&self, f: impl Fn(f64) -> f64) -> Option<Const> {
+        match self {
+            Const::Float(x) => Some(Const::Float(f(*x))),
+            Const::Triple(v) => Some(Const::Triple(v.map(&f))),
+            Const::Matrix(m) => Some(Const::Matrix(m.map(&f))),
+            Const::Str(_) | Const::Array(_) => None,
+        }
+    }
+
+    /// A float promoted to base type `to` as an implicit conversion does it: a triple of three
+    /// equal components, or a matrix with the float on its diagonal. Any other constant (and a
+    /// float promoted to `float`) is returned unchanged.
+    #[must_use]
+    pub fn promote(self, to: BaseType) -> Const {
+        match (self, to) {
+            (Const::Float(x), t) if t.is_triple() => Const::Triple([x; 3]),
+            (Const::Float(x), BaseType::Matrix) => {
+                let mut m = [0.0; 16];
+                for i in 0..4 {
+                    m[i * 5] = x;
+                }
+                Const::Matrix(m)
+            }
+            (c, _) => c,
+        }
+    }
+
+    /// Appends the components to `nums` and the strings to `strs`, the elements of an array
+    /// in order: the flat layout of a constant in a back end's registers.
+    pub fn flatten(&self, nums: &mut Vec<f64>, strs: &mut Vec<String>) {
+        match self {
+            Const::Float(x) => nums.push(*x),
+            Const::Triple(t) => nums.extend_from_slice(t),
+            Const::Matrix(m) => nums.extend_from_slice(m),
+            Const::Str(s) => strs.push(s.clone()),
+            Const::Array(v) => v.iter().for_each(|e| e.flatten(nums, strs)),
+        }
+    }
+}
+
 /// The RSL global variables a shader can read (and some write).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Global {
@@ -634,5 +713,43 @@ impl Op {
             Op::Load(_) | Op::LoadElem(_) => false,
             _ => true,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Const;
+    use crate::types::BaseType;
+
+    #[test]
+    fn const_components() {
+        let m: [f64; 16] = std::array::from_fn(|i| i as f64);
+        for (c, base) in [
+            (Const::Float(2.0), BaseType::Float),
+            (Const::Triple([1.0, 2.0, 3.0]), BaseType::Normal),
+            (Const::Matrix(m), BaseType::Matrix),
+        ] {
+            let v = c.components().unwrap();
+            assert_eq!(Const::from_components(base, &v), Some(c));
+        }
+        assert_eq!(Const::Str("a".into()).components(), None);
+        assert_eq!(Const::Array(vec![Const::Float(1.0)]).components(), None);
+        assert_eq!(Const::from_components(BaseType::Color, &[1.0]), None);
+        assert_eq!(Const::from_components(BaseType::Void, &[1.0]), None);
+        assert_eq!(Const::Triple([1.0, 2.0, 3.0]).map_components(|x| -x), Some(Const::Triple([-1.0, -2.0, -3.0])));
+        assert_eq!(Const::Str("a".into()).map_components(|x| -x), None);
+    }
+
+    #[test]
+    fn const_promote_and_flatten() {
+        assert_eq!(Const::Float(2.0).promote(BaseType::Color), Const::Triple([2.0; 3]));
+        let Const::Matrix(d) = Const::Float(2.0).promote(BaseType::Matrix) else { panic!() };
+        assert_eq!((d[0], d[1], d[5], d[15]), (2.0, 0.0, 2.0, 2.0));
+        assert_eq!(Const::Triple([1.0; 3]).promote(BaseType::Float), Const::Triple([1.0; 3]));
+        let c = Const::Array(vec![Const::Triple([1.0, 2.0, 3.0]), Const::Float(4.0)]);
+        let (mut nums, mut strs) = (Vec::new(), Vec::new());
+        c.flatten(&mut nums, &mut strs);
+        Const::Array(vec![Const::Str("x".into())]).flatten(&mut nums, &mut strs);
+        assert_eq!((nums, strs), (vec![1.0, 2.0, 3.0, 4.0], vec!["x".to_string()]));
     }
 }

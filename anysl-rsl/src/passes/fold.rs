@@ -1,4 +1,10 @@
 //! Parameter specialization and constant folding.
+//!
+//! The evaluation of ops on constants here is the compiler's one constant evaluator: besides
+//! folding IR instructions, the front end evaluates shader parameter defaults with its
+//! element-wise arithmetic (`componentwise`) and its math built-ins (`eval_builtin`), on
+//! the [`Const`] component helpers ([`Const::components`], [`Const::from_components`],
+//! [`Const::promote`]).
 
 use crate::builtins::Builtin;
 use crate::ir::{BinOp, Block, Const, Function, Inst, Module, Node, Op, SlotKind, UnOp, Value};
@@ -173,30 +179,26 @@ fn fold_inst(func: &mut Function, fwd: &mut [Option<Value>], v: Value) {
     }
 }
 
-fn comps(c: &Const) -> Option<Vec<f64>> {
-    match c {
-        Const::Float(x) => Some(vec![*x]),
-        Const::Triple(t) => Some(t.to_vec()),
-        Const::Matrix(m) => Some(m.to_vec()),
-        _ => None,
-    }
-}
-
-fn from_comps(base: BaseType, v: &[f64]) -> Option<Const> {
-    match (base, v.len()) {
-        (BaseType::Float, 1) => Some(Const::Float(v[0])),
-        (b, 3) if b.is_triple() => Some(Const::Triple([v[0], v[1], v[2]])),
-        (BaseType::Matrix, 16) => {
-            let mut m = [0.0; 16];
-            m.copy_from_slice(v);
-            Some(Const::Matrix(m))
-        }
-        _ => None,
-    }
-}
-
 fn bool_c(b: bool) -> Const {
     Const::Float(if b { 1.0 } else { 0.0 })
+}
+
+/// `a op b` component by component for `op` one of `+ - * /`, a one-component operand
+/// standing for every component (a float with a triple).
+pub(crate) fn componentwise(op: BinOp, a: &[f64], b: &[f64]) -> Vec<f64> {
+    let n = a.len().max(b.len());
+    let get = |v: &[f64], i: usize| if v.len() == 1 { v[0] } else { v[i] };
+    (0..n)
+        .map(|i| {
+            let (x, y) = (get(a, i), get(b, i));
+            match op {
+                BinOp::Add => x + y,
+                BinOp::Sub => x - y,
+                BinOp::Mul => x * y,
+                _ => x / y,
+            }
+        })
+        .collect()
 }
 
 fn mat_mul(a: &[f64], b: &[f64]) -> Vec<f64> {
@@ -215,10 +217,10 @@ fn eval(inst: &Inst, args: &[Const]) -> Option<Const> {
     let base = inst.ty.base;
     match &inst.op {
         Op::Unary(UnOp::Neg) => {
-            let a = comps(&args[0])?;
-            from_comps(base, &a.iter().map(|x| -x).collect::<Vec<_>>())
+            let a = args[0].components()?;
+            Const::from_components(base, &a.iter().map(|x| -x).collect::<Vec<_>>())
         }
-        Op::Unary(UnOp::Not) => Some(bool_c(comps(&args[0])?[0] == 0.0)),
+        Op::Unary(UnOp::Not) => Some(bool_c(args[0].components()?[0] == 0.0)),
         Op::Binary(op) => {
             if let (Const::Str(a), Const::Str(b)) = (&args[0], &args[1]) {
                 return match op {
@@ -227,8 +229,8 @@ fn eval(inst: &Inst, args: &[Const]) -> Option<Const> {
                     _ => None,
                 };
             }
-            let a = comps(&args[0])?;
-            let b = comps(&args[1])?;
+            let a = args[0].components()?;
+            let b = args[1].components()?;
             match op {
                 BinOp::Dot if a.len() == 3 && b.len() == 3 => {
                     Some(Const::Float(a[0] * b[0] + a[1] * b[1] + a[2] * b[2]))
@@ -238,7 +240,7 @@ fn eval(inst: &Inst, args: &[Const]) -> Option<Const> {
                     a[2] * b[0] - a[0] * b[2],
                     a[0] * b[1] - a[1] * b[0],
                 ])),
-                BinOp::Mul if a.len() == 16 && b.len() == 16 => from_comps(base, &mat_mul(&a, &b)),
+                BinOp::Mul if a.len() == 16 && b.len() == 16 => Const::from_components(base, &mat_mul(&a, &b)),
                 BinOp::And => Some(bool_c(a[0] != 0.0 && b[0] != 0.0)),
                 BinOp::Or => Some(bool_c(a[0] != 0.0 || b[0] != 0.0)),
                 BinOp::Eq => Some(bool_c(a == b)),
@@ -248,59 +250,41 @@ fn eval(inst: &Inst, args: &[Const]) -> Option<Const> {
                 BinOp::Gt => Some(bool_c(a[0] > b[0])),
                 BinOp::Ge => Some(bool_c(a[0] >= b[0])),
                 BinOp::Add | BinOp::Sub | BinOp::Mul | BinOp::Div if a.len() != 16 && b.len() != 16 => {
-                    let n = a.len().max(b.len());
-                    let get = |v: &[f64], i: usize| if v.len() == 1 { v[0] } else { v[i] };
-                    let r: Vec<f64> = (0..n)
-                        .map(|i| {
-                            let (x, y) = (get(&a, i), get(&b, i));
-                            match op {
-                                BinOp::Add => x + y,
-                                BinOp::Sub => x - y,
-                                BinOp::Mul => x * y,
-                                _ => x / y,
-                            }
-                        })
-                        .collect();
-                    from_comps(base, &r)
+                    Const::from_components(base, &componentwise(*op, &a, &b))
                 }
                 _ => None,
             }
         }
         Op::Convert => {
             if inst.is_bool {
-                return Some(bool_c(comps(&args[0])?.iter().any(|&x| x != 0.0)));
+                return Some(bool_c(args[0].components()?.iter().any(|&x| x != 0.0)));
             }
-            let a = comps(&args[0])?;
-            match (base, a.len()) {
-                (b, 1) if b.is_triple() => Some(Const::Triple([a[0]; 3])),
-                (BaseType::Matrix, 1) => {
-                    let mut m = [0.0; 16];
-                    for i in 0..4 {
-                        m[i * 5] = a[0];
-                    }
-                    Some(Const::Matrix(m))
-                }
-                _ => from_comps(base, &a),
+            let a = args[0].components()?;
+            match a.as_slice() {
+                [x] if base.is_triple() || base == BaseType::Matrix => Some(Const::Float(*x).promote(base)),
+                _ => Const::from_components(base, &a),
             }
         }
         Op::MakeTriple | Op::MakeMatrix => {
-            let v: Option<Vec<f64>> = args.iter().map(|c| comps(c).map(|v| v[0])).collect();
-            from_comps(base, &v?)
+            let v: Option<Vec<f64>> = args.iter().map(|c| c.components().map(|v| v[0])).collect();
+            Const::from_components(base, &v?)
         }
         Op::Call { builtin, .. } => eval_builtin(*builtin, base, args),
         _ => None,
     }
 }
 
-/// The pure math built-ins folded at compile time, on floats and component-wise on triples.
-fn eval_builtin(builtin: Builtin, base: BaseType, args: &[Const]) -> Option<Const> {
-    let a: Option<Vec<Vec<f64>>> = args.iter().map(comps).collect();
+/// The pure math built-ins folded at compile time, on floats and component-wise on triples,
+/// with `base` the type of the result; `None` when `builtin` is not folded or the arguments
+/// do not fit.
+pub(crate) fn eval_builtin(builtin: Builtin, base: BaseType, args: &[Const]) -> Option<Const> {
+    let a: Option<Vec<Vec<f64>>> = args.iter().map(Const::components).collect();
     let a = a?;
     let f1 = |f: fn(f64) -> f64| -> Option<Const> {
         if a.len() != 1 {
             return None;
         }
-        from_comps(base, &a[0].iter().map(|&x| f(x)).collect::<Vec<_>>())
+        Const::from_components(base, &a[0].iter().map(|&x| f(x)).collect::<Vec<_>>())
     };
     let scalar = |i: usize| a.get(i).and_then(|v| if v.len() == 1 { Some(v[0]) } else { None });
     match builtin {
@@ -337,10 +321,10 @@ fn eval_builtin(builtin: Builtin, base: BaseType, args: &[Const]) -> Option<Cons
             Some(Const::Float(x - y * (x / y).floor()))
         }
         Builtin::Min if a.len() == 2 && a[0].len() == a[1].len() => {
-            from_comps(base, &a[0].iter().zip(&a[1]).map(|(x, y)| x.min(*y)).collect::<Vec<_>>())
+            Const::from_components(base, &a[0].iter().zip(&a[1]).map(|(x, y)| x.min(*y)).collect::<Vec<_>>())
         }
         Builtin::Max if a.len() == 2 && a[0].len() == a[1].len() => {
-            from_comps(base, &a[0].iter().zip(&a[1]).map(|(x, y)| x.max(*y)).collect::<Vec<_>>())
+            Const::from_components(base, &a[0].iter().zip(&a[1]).map(|(x, y)| x.max(*y)).collect::<Vec<_>>())
         }
         Builtin::Clamp => {
             let (x, lo, hi) = (scalar(0)?, scalar(1)?, scalar(2)?);
@@ -352,13 +336,5 @@ fn eval_builtin(builtin: Builtin, base: BaseType, args: &[Const]) -> Option<Cons
             Some(Const::Float(a[0].iter().map(|x| x * x).sum::<f64>().sqrt()))
         }
         _ => None,
-    }
-}
-
-impl Const {
-    /// The const of type `float` holding `x`.
-    #[must_use]
-    pub fn float(x: f64) -> Self {
-        Const::Float(x)
     }
 }

@@ -157,7 +157,7 @@ fn give_frame<F: ShadingFloat>(fr: Frame<F>) {
 fn write_const<F: ShadingFloat>(fr: &mut Frame<F>, loc: Loc, c: &Const) {
     let mut nums = Vec::new();
     let mut strs = Vec::new();
-    flatten(c, &mut nums, &mut strs);
+    c.flatten(&mut nums, &mut strs);
     match loc {
         Loc::Num { off, width } => {
             if nums.len() == 1 && width > 1 {
@@ -176,16 +176,6 @@ fn write_const<F: ShadingFloat>(fr: &mut Frame<F>, loc: Loc, c: &Const) {
             }
         }
         _ => {}
-    }
-}
-
-fn flatten(c: &Const, out: &mut Vec<f64>, strs: &mut Vec<String>) {
-    match c {
-        Const::Float(x) => out.push(*x),
-        Const::Triple(t) => out.extend_from_slice(t),
-        Const::Matrix(m) => out.extend_from_slice(m),
-        Const::Str(s) => strs.push(s.clone()),
-        Const::Array(v) => v.iter().for_each(|e| flatten(e, out, strs)),
     }
 }
 

@@ -277,16 +277,6 @@ struct Cx<'a> {
     vals: &'a [Loc],
 }
 
-fn flatten(c: &Const, out: &mut Vec<f64>, strs: &mut Vec<String>) {
-    match c {
-        Const::Float(x) => out.push(*x),
-        Const::Triple(t) => out.extend_from_slice(t),
-        Const::Matrix(m) => out.extend_from_slice(m),
-        Const::Str(s) => strs.push(s.clone()),
-        Const::Array(v) => v.iter().for_each(|e| flatten(e, out, strs)),
-    }
-}
-
 impl Cx<'_> {
     fn v(&self, v: Value) -> Loc {
         self.vals[v.0 as usize]
@@ -369,7 +359,7 @@ impl Cx<'_> {
                     Loc::Mask(m) => k.mask.push((m, matches!(c, Const::Float(x) if *x != 0.0))),
                     Loc::Num { off, width } => {
                         let mut vals = Vec::new();
-                        flatten(c, &mut vals, &mut Vec::new());
+                        c.flatten(&mut vals, &mut Vec::new());
                         if vals.len() == 1 && width > 1 {
                             vals = vec![vals[0]; width as usize];
                         }
@@ -379,7 +369,7 @@ impl Cx<'_> {
                     }
                     Loc::Str(off, _) => {
                         let mut strs = Vec::new();
-                        flatten(c, &mut Vec::new(), &mut strs);
+                        c.flatten(&mut Vec::new(), &mut strs);
                         for (i, s) in strs.into_iter().enumerate() {
                             k.strs.push((off + i as u32, s));
                         }
