@@ -2660,6 +2660,14 @@ impl<'c, 'm> Cg<'c, 'm> {
                 Val::Void => reprs.push('x'),
             }
         }
+        // A matrix `comp` reads its row and column at compile time: they are part of the body.
+        if let Op::Call { builtin: Builtin::Comp, .. } = &inst.op {
+            if self.func.inst(inst.args[0]).ty.base == BaseType::Matrix {
+                for &a in &inst.args[1..] {
+                    extra.push_str(&format!(".{}", self.const_index(a).unwrap_or(usize::MAX)));
+                }
+            }
+        }
         let want = self.inst_repr[v.0 as usize].letter();
         let host = if self.lights_by_renderer { ".host" } else { "" };
         format!("ar_{op}_{types}.{reprs}{want}{extra}.{}{host}", letter(inst.ty))

@@ -204,6 +204,7 @@ impl Builtin {
                 | B::CalculateNormal
                 | B::FilterWidth
                 | B::FilterStep
+                | B::FilteredPulse
                 | B::Texture
                 | B::Environment
                 | B::Shadow
@@ -247,6 +248,7 @@ impl Builtin {
                 | B::CalculateNormal
                 | B::FilterWidth
                 | B::FilterStep
+                | B::FilteredPulse
                 | B::ShaderName
                 | B::Transform
                 | B::VTransform
@@ -279,6 +281,7 @@ impl Builtin {
                 | B::Area
                 | B::FilterWidth
                 | B::FilterStep
+                | B::FilteredPulse
                 | B::FaceForward
         )
     }
@@ -334,6 +337,7 @@ impl Builtin {
                 | B::Area
                 | B::FilterWidth
                 | B::FilterStep
+                | B::FilteredPulse
                 | B::Transform
                 | B::VTransform
                 | B::NTransform
