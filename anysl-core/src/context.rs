@@ -521,20 +521,48 @@ impl<F: ShadingFloat> ConeTest<F> {
     }
 }
 
+/// What an `illuminance` statement asks of the renderer: the lights of `category` as seen from
+/// `p`, only within `cone` (axis, half-angle) when it is given.
+#[derive(Clone, Copy, Debug)]
+pub struct LightQuery<'a, F> {
+    /// The light category: `""` for every light, else as RSL's `illuminance("name", …)`.
+    pub category: &'a str,
+    /// The point the lights are seen from.
+    pub p: Vec3<F>,
+    /// `(axis, angle)`: only lights within `angle` of `axis`; `None` for every direction.
+    pub cone: Option<(Vec3<F>, F)>,
+}
+
+impl<'a, F: ShadingFloat> LightQuery<'a, F> {
+    /// The query of `illuminance(category, p[, axis, angle])`.
+    #[inline(always)]
+    #[must_use]
+    pub fn new(category: &'a str, p: Vec3<F>, cone: Option<(Vec3<F>, F)>) -> Self {
+        Self { category, p, cone }
+    }
+
+    /// Every light in the hemisphere of `n` seen from `p`: what `diffuse(N)` and `specular`
+    /// ask (`illuminance(p, n, PI/2)`).
+    #[inline(always)]
+    #[must_use]
+    pub fn hemisphere(p: Vec3<F>, n: Vec3<F>) -> Self {
+        Self { category: "", p, cone: Some((n, F::c(core::f64::consts::FRAC_PI_2))) }
+    }
+}
+
 /// The renderer's side of shading: globals and the constructs that need the scene.
 pub trait ShadingContext<F: ShadingFloat> {
     /// The RSL globals of the points being shaded.
     fn globals(&self) -> &Globals<F>;
 
     /// RSL `illuminance([category,] p [, axis, angle]) { body }`: runs `body(e, L, Cl)` once per
-    /// non-ambient light with the mask narrowed to the lanes the light reaches (inside the
-    /// cone, not in shadow). `L` points from `p` to the light, unnormalized.
+    /// non-ambient light of `q.category` with the mask narrowed to the lanes the light reaches
+    /// from `q.p` (inside `q.cone`, not in shadow). `L` points from `q.p` to the light,
+    /// unnormalized.
     fn illuminance<B: FnMut(&mut Exec<F>, Vec3<F>, Color<F>)>(
         &mut self,
         e: &mut Exec<F>,
-        category: &str,
-        p: Vec3<F>,
-        cone: Option<(Vec3<F>, F)>,
+        q: LightQuery<'_, F>,
         body: B,
     );
 
@@ -583,9 +611,7 @@ pub trait ErasedContext<F: ShadingFloat> {
     fn illuminance_dyn(
         &mut self,
         e: &mut Exec<F>,
-        category: &str,
-        p: Vec3<F>,
-        cone: Option<(Vec3<F>, F)>,
+        q: LightQuery<'_, F>,
         body: &mut dyn FnMut(&mut Exec<F>, Vec3<F>, Color<F>),
     );
     /// [`ShadingContext::ambient`].
@@ -605,12 +631,10 @@ impl<F: ShadingFloat, C: ShadingContext<F>> ErasedContext<F> for C {
     fn illuminance_dyn(
         &mut self,
         e: &mut Exec<F>,
-        category: &str,
-        p: Vec3<F>,
-        cone: Option<(Vec3<F>, F)>,
+        q: LightQuery<'_, F>,
         body: &mut dyn FnMut(&mut Exec<F>, Vec3<F>, Color<F>),
     ) {
-        self.illuminance(e, category, p, cone, body);
+        self.illuminance(e, q, body);
     }
     fn ambient_dyn(&mut self, e: &Exec<F>) -> Color<F> {
         self.ambient(e)
@@ -637,12 +661,10 @@ impl<F: ShadingFloat> ShadingContext<F> for Erased<'_, F> {
     fn illuminance<B: FnMut(&mut Exec<F>, Vec3<F>, Color<F>)>(
         &mut self,
         e: &mut Exec<F>,
-        category: &str,
-        p: Vec3<F>,
-        cone: Option<(Vec3<F>, F)>,
+        q: LightQuery<'_, F>,
         mut body: B,
     ) {
-        self.0.illuminance_dyn(e, category, p, cone, &mut body);
+        self.0.illuminance_dyn(e, q, &mut body);
     }
     fn ambient(&mut self, e: &Exec<F>) -> Color<F> {
         self.0.ambient_dyn(e)
@@ -662,20 +684,14 @@ impl<F: ShadingFloat> ShadingContext<F> for Erased<'_, F> {
 /// inside the illuminance cone, asks `visibility` for shadowing (`None` = unshadowed) and runs
 /// `body` with `L` reversed to point from the surface to the light.
 #[inline(always)]
-pub fn run_illuminance<F, L, V, B>(
-    lights: &[L],
-    e: &mut Exec<F>,
-    category: &str,
-    p: Vec3<F>,
-    cone: Option<(Vec3<F>, F)>,
-    mut visibility: V,
-    mut body: B,
-) where
+pub fn run_illuminance<F, L, V, B>(lights: &[L], e: &mut Exec<F>, q: LightQuery<'_, F>, mut visibility: V, mut body: B)
+where
     F: ShadingFloat,
     L: LightSource,
     V: FnMut(F::Mask, Vec3<F>, &LightOutput<F>) -> Option<Color<F>>,
     B: FnMut(&mut Exec<F>, Vec3<F>, Color<F>),
 {
+    let LightQuery { category, p, cone } = q;
     let cone = cone.map(|(axis, angle)| ConeTest::new(axis, angle));
     for light in lights {
         if light.source_emission() == Some(Emission::Ambient) {
@@ -806,12 +822,10 @@ impl<F: ShadingFloat, L: LightSource> ShadingContext<F> for PointContext<'_, F, 
     fn illuminance<B: FnMut(&mut Exec<F>, Vec3<F>, Color<F>)>(
         &mut self,
         e: &mut Exec<F>,
-        category: &str,
-        p: Vec3<F>,
-        cone: Option<(Vec3<F>, F)>,
+        q: LightQuery<'_, F>,
         body: B,
     ) {
-        run_illuminance(self.lights, e, category, p, cone, |_, _, _| None, body);
+        run_illuminance(self.lights, e, q, |_, _, _| None, body);
     }
 
     #[inline(always)]

@@ -32,8 +32,8 @@ pub mod vec;
 
 pub use context::{
     illuminate, in_cone, run_illuminance, solar, sum_ambient, ConeTest, Emission, Erased, ErasedContext, Falloff,
-    GlobalSet, Globals, LightData, LightKind, LightOutput, LightSource, PointContext, ShadingContext, SurfaceOutput,
-    MAX_DATA_LIGHTS,
+    GlobalSet, Globals, LightData, LightKind, LightOutput, LightQuery, LightSource, PointContext, ShadingContext,
+    SurfaceOutput, MAX_DATA_LIGHTS,
 };
 pub use exec::{Exec, INTERVAL_LOOP_LIMIT};
 pub use float::{rsqrt_f32, Blend, LatticeBits, Mask, PureFn, ShadingFloat, RSQRT_ESTIMATE_14};

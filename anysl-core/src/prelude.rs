@@ -1,7 +1,8 @@
 //! Everything a shader needs in scope: `use anysl_core::prelude::*;`.
 
 pub use crate::context::{
-    illuminate, solar, Emission, Falloff, Globals, LightData, LightKind, LightOutput, ShadingContext, SurfaceOutput,
+    illuminate, solar, Emission, Falloff, Globals, LightData, LightKind, LightOutput, LightQuery, ShadingContext,
+    SurfaceOutput,
 };
 pub use crate::exec::Exec;
 pub use crate::float::{Blend, LatticeBits, Mask, PureFn, ShadingFloat};

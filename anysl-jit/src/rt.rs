@@ -808,7 +808,7 @@ unsafe extern "C" fn host_illuminance<F: ShadingFloat, C: ShadingContext<F>, G: 
     let category =
         if cat_len == 0 { "" } else { core::str::from_utf8_unchecked(core::slice::from_raw_parts(cat, cat_len)) };
     let mut e = Exec::with_mask(m);
-    ctx.illuminance(&mut e, category, p, cone, |e, l, cl| {
+    ctx.illuminance(&mut e, LightQuery::new(category, p, cone), |e, l, cl| {
         let mut buf = MaybeUninit::<[f32; 6 * MAX_STRIDE]>::uninit();
         let buf: *mut f32 = buf.as_mut_ptr().cast();
         let mut o = HOut::<F, G>::new(buf);

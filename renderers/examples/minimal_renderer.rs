@@ -13,7 +13,7 @@
 
 use anysl_ad::{Dual, Interval};
 use anysl_core::{
-    run_illuminance, sum_ambient, Color, Exec, Globals, ShadingContext, ShadingFloat, SurfaceShader, Vec3,
+    run_illuminance, sum_ambient, Color, Exec, Globals, LightQuery, ShadingContext, ShadingFloat, SurfaceShader, Vec3,
 };
 use anysl_shaders::{table1_lights, Light, Surface};
 
@@ -32,12 +32,10 @@ impl<F: ShadingFloat> ShadingContext<F> for Tiny<'_, F> {
     fn illuminance<B: FnMut(&mut Exec<F>, Vec3<F>, Color<F>)>(
         &mut self,
         e: &mut Exec<F>,
-        category: &str,
-        p: Vec3<F>,
-        cone: Option<(Vec3<F>, F)>,
+        q: LightQuery<'_, F>,
         body: B,
     ) {
-        run_illuminance(self.lights, e, category, p, cone, |_, _, _| None, body);
+        run_illuminance(self.lights, e, q, |_, _, _| None, body);
     }
     fn ambient(&mut self, e: &Exec<F>) -> Color<F> {
         sum_ambient(self.lights, e, self.globals.P)

@@ -28,7 +28,7 @@
 //!         let g = *ctx.globals();
 //!         let nf = faceforward(g.N.normalize(), g.I, g.Ng);
 //!         let mut sum = Color::zero();
-//!         ctx.illuminance(e, "", g.P, Some((nf, F::c(std::f64::consts::FRAC_PI_2))), |e, l, cl| {
+//!         ctx.illuminance(e, LightQuery::hemisphere(g.P, nf), |e, l, cl| {
 //!             e.update(&mut sum, |s| s + cl * l.normalize().dot(nf));
 //!         });
 //!         SurfaceOutput { Ci: g.Cs * sum * F::c(self.Kd), Oi: g.Os }

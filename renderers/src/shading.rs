@@ -12,7 +12,8 @@ use crate::scene::{Scene, SurfaceHit};
 use anysl_ad::Dual;
 use anysl_core::{
     in_cone, run_illuminance, sum_ambient, Color, Emission, Exec, GlobalSet, Globals, LightData, LightOutput,
-    LightShader, Mask, ShadingContext, ShadingFloat, Spaces, SurfaceOutput, SurfaceShader, SurfaceVisitor, Vec3,
+    LightQuery, LightShader, Mask, ShadingContext, ShadingFloat, Spaces, SurfaceOutput, SurfaceShader, SurfaceVisitor,
+    Vec3,
 };
 use glam::Vec3A;
 
@@ -681,21 +682,14 @@ fn shadow_visibility<F: ShadingFloat, S, L>(
 
 /// [`run_illuminance`] not inlined (see [`SceneContext`]'s `illuminance`).
 #[inline(never)]
-fn run_illuminance_out_of_line<F, L, V, B>(
-    lights: &[L],
-    e: &mut Exec<F>,
-    category: &str,
-    p: Vec3<F>,
-    cone: Option<(Vec3<F>, F)>,
-    visibility: V,
-    body: B,
-) where
+fn run_illuminance_out_of_line<F, L, V, B>(lights: &[L], e: &mut Exec<F>, q: LightQuery<'_, F>, visibility: V, body: B)
+where
     F: ShadingFloat,
     L: anysl_core::LightSource,
     V: FnMut(F::Mask, Vec3<F>, &LightOutput<F>) -> Option<Color<F>>,
     B: FnMut(&mut Exec<F>, Vec3<F>, Color<F>),
 {
-    run_illuminance(lights, e, category, p, cone, visibility, body);
+    run_illuminance(lights, e, q, visibility, body);
 }
 
 impl<F: ShadingFloat, S: SurfaceShader, L: LightShader> ShadingContext<F> for SceneContext<'_, F, S, L> {
@@ -712,9 +706,7 @@ impl<F: ShadingFloat, S: SurfaceShader, L: LightShader> ShadingContext<F> for Sc
     fn illuminance<B: FnMut(&mut Exec<F>, Vec3<F>, Color<F>)>(
         &mut self,
         e: &mut Exec<F>,
-        category: &str,
-        p: Vec3<F>,
-        cone: Option<(Vec3<F>, F)>,
+        q: LightQuery<'_, F>,
         body: B,
     ) {
         let tracer = self.tracer;
@@ -722,16 +714,16 @@ impl<F: ShadingFloat, S: SurfaceShader, L: LightShader> ShadingContext<F> for Sc
             tracer.shadows.then(|| Color::splat(shadow_visibility::<F, S, L>(tracer.scene, mask, p, out)))
         };
         // Data carries no category to select on.
-        match tracer.data_for::<F>().filter(|_| category.is_empty()) {
-            Some(data) => run_illuminance(data, e, category, p, cone, visibility, body),
+        match tracer.data_for::<F>().filter(|_| q.category.is_empty()) {
+            Some(data) => run_illuminance(data, e, q, visibility, body),
             // Where the lights can run as data, the light-shader loop is the rare path
             // (lights without a description, a category): out of line, so that its copy of
             // the body and the light shaders' code (a spotlight's cosines) do not crowd the
             // shading pass's registers and frame. Elsewhere it is the path, inlined.
             None if LightData::exact_for::<F>() => {
-                run_illuminance_out_of_line(&tracer.scene.lights, e, category, p, cone, visibility, body);
+                run_illuminance_out_of_line(&tracer.scene.lights, e, q, visibility, body);
             }
-            None => run_illuminance(&tracer.scene.lights, e, category, p, cone, visibility, body),
+            None => run_illuminance(&tracer.scene.lights, e, q, visibility, body),
         }
     }
 
@@ -797,16 +789,14 @@ impl<F: ShadingFloat> ShadingContext<F> for ProbeContext<F> {
     fn illuminance<B: FnMut(&mut Exec<F>, Vec3<F>, Color<F>)>(
         &mut self,
         e: &mut Exec<F>,
-        _category: &str,
-        _p: Vec3<F>,
-        cone: Option<(Vec3<F>, F)>,
+        q: LightQuery<'_, F>,
         mut body: B,
     ) {
         let g = &self.globals;
         let facing = g.N.dot(g.I).lt(F::c(0.0));
         let l = Vec3::select(facing, g.N, -g.N);
         let mut mask = e.mask();
-        if let Some((axis, angle)) = cone {
+        if let Some((axis, angle)) = q.cone {
             mask = mask & in_cone(l, axis, angle);
         }
         e.masked(mask, |e| body(e, l, Color::splat(F::c(1.0))));

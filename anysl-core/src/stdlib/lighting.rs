@@ -1,12 +1,10 @@
 //! Built-in illumination functions over the [`ShadingContext`]: RSL `ambient`, `diffuse`,
 //! `specular`, `phong` and `specularbrdf`. Each is an `illuminance` loop written once.
 
-use crate::context::ShadingContext;
+use crate::context::{LightQuery, ShadingContext};
 use crate::exec::Exec;
 use crate::float::ShadingFloat;
 use crate::vec::{Color, Vec3};
-
-use super::math::PI;
 
 /// RSL `ambient()`.
 #[inline(always)]
@@ -23,9 +21,7 @@ pub fn diffuse<F: ShadingFloat, C: ShadingContext<F>>(ctx: &mut C, e: &mut Exec<
     let mut c = Color::zero();
     ctx.illuminance(
         e,
-        "",
-        p,
-        Some((n, F::c(PI / 2.0))),
+        LightQuery::hemisphere(p, n),
         #[inline(always)]
         |e, l, cl| {
             let w = l.normalize().dot(n).max(F::c(0.0));
@@ -56,9 +52,7 @@ pub fn diffuse_specular<F: ShadingFloat, C: ShadingContext<F>>(
     let zero = F::c(0.0);
     ctx.illuminance(
         e,
-        "",
-        p,
-        None,
+        LightQuery::new("", p, None),
         #[inline(always)]
         |e, l, cl| {
             let lu = l.normalize();
@@ -101,9 +95,7 @@ pub fn specular<F: ShadingFloat, C: ShadingContext<F>>(
     let mut c = Color::zero();
     ctx.illuminance(
         e,
-        "",
-        p,
-        Some((n, F::c(PI / 2.0))),
+        LightQuery::hemisphere(p, n),
         #[inline(always)]
         |e, l, cl| {
             // The lobe outside the update closure: that closure is not always inlined, and
@@ -130,9 +122,7 @@ pub fn phong<F: ShadingFloat, C: ShadingContext<F>>(
     let mut c = Color::zero();
     ctx.illuminance(
         e,
-        "",
-        p,
-        Some((n, F::c(PI / 2.0))),
+        LightQuery::hemisphere(p, n),
         #[inline(always)]
         |e, l, cl| {
             let w = r.dot(l.normalize()).max(F::c(0.0)).pow(size);

@@ -32,13 +32,11 @@ impl<F: ShadingFloat> ShadingContext<F> for Probe<'_, F> {
     fn illuminance<B: FnMut(&mut Exec<F>, Vec3<F>, Color<F>)>(
         &mut self,
         e: &mut Exec<F>,
-        category: &str,
-        p: Vec3<F>,
-        cone: Option<(Vec3<F>, F)>,
+        q: LightQuery<'_, F>,
         body: B,
     ) {
         self.loops.set(self.loops.get() + 1);
-        self.inner.illuminance(e, category, p, cone, body);
+        self.inner.illuminance(e, q, body);
     }
     fn ambient(&mut self, e: &Exec<F>) -> Color<F> {
         self.loops.set(self.loops.get() + 1);

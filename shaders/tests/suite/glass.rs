@@ -18,12 +18,10 @@ impl ShadingContext<f64> for Recording<'_> {
     fn illuminance<B: FnMut(&mut Exec<f64>, Vec3<f64>, Color<f64>)>(
         &mut self,
         e: &mut Exec<f64>,
-        category: &str,
-        p: Vec3<f64>,
-        cone: Option<(Vec3<f64>, f64)>,
+        q: LightQuery<'_, f64>,
         body: B,
     ) {
-        self.inner.illuminance(e, category, p, cone, body);
+        self.inner.illuminance(e, q, body);
     }
     fn ambient(&mut self, e: &Exec<f64>) -> Color<f64> {
         self.inner.ambient(e)

@@ -349,7 +349,7 @@ fn exec_block<F: ShadingFloat, C: ShadingContext<F>>(
                     let saved = std::mem::take(&mut fr.loops);
                     let no = F::Mask::splat(false);
                     fr.loops.push((vec![no], vec![no]));
-                    ctx.illuminance(&mut e, &category, pos, cone_v, |e, lv, clv| {
+                    ctx.illuminance(&mut e, LightQuery::new(&category, pos, cone_v), |e, lv, clv| {
                         let broken = fr.loops.last().map_or(no, |l| l.0[0]);
                         let live = e.mask() & !broken;
                         if live.none() {
@@ -908,9 +908,7 @@ impl<F: ShadingFloat> ShadingContext<F> for LightCtx<F> {
     fn illuminance<B: FnMut(&mut Exec<F>, Vec3<F>, Color<F>)>(
         &mut self,
         _e: &mut Exec<F>,
-        _category: &str,
-        _p: Vec3<F>,
-        _cone: Option<(Vec3<F>, F)>,
+        _q: LightQuery<'_, F>,
         _body: B,
     ) {
     }

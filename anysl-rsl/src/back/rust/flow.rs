@@ -414,7 +414,7 @@ impl<'a> Gen<'a> {
         self.ind += 1;
         self.line(&format!("let mut {lbrk} = no;"));
         self.line(&format!(
-            "ctx.illuminance({ex}, {cat}, {p}, {cone_e}, |le: &mut Exec<F>, l: Vec3<F>, cl: Color<F>| {{"
+            "ctx.illuminance({ex}, LightQuery::new({cat}, {p}, {cone_e}), |le: &mut Exec<F>, l: Vec3<F>, cl: Color<F>| {{"
         ));
         self.ind += 1;
         self.line(&format!("let mut {lm} = le.mask() & !{lbrk};"));

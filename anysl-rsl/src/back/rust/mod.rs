@@ -31,7 +31,7 @@
 //!   varying loops carry a live mask and break/continue masks per loop level; `return` under
 //!   varying control flow collects the returning lanes in a per-frame mask — the semantics of
 //!   the batched interpreter's executor, statement for statement.
-//! * `illuminance` is `ctx.illuminance(e, category, P, cone, |e, L, Cl| …)`; a `break` stops
+//! * `illuminance` is `ctx.illuminance(e, LightQuery::new(category, P, cone), |e, L, Cl| …)`; a `break` stops
 //!   visiting lights for those lanes. The closure cannot use the context, so `ambient`,
 //!   `diffuse`, `specular`, `phong`, `trace` and nested light loops inside a light-loop body
 //!   are generation errors.

@@ -18,7 +18,7 @@ impl SurfaceShader for Lambert {
         let g = *ctx.globals();
         let nf = faceforward(g.N.normalize(), g.I, g.Ng);
         let mut sum = Color::zero();
-        ctx.illuminance(e, "", g.P, Some((nf, F::c(std::f64::consts::FRAC_PI_2))), |e, l, cl| {
+        ctx.illuminance(e, LightQuery::hemisphere(g.P, nf), |e, l, cl| {
             e.update(&mut sum, |s| s + cl * l.normalize().dot(nf));
         });
         let tint = Color::from_array(self.tint);
