@@ -83,7 +83,7 @@ fn project_shaders_compile() {
 
 #[test]
 fn conformance_programs_compile() {
-    let files = sl_files(&root().join("tests/rsl/conformance"));
+    let files = sl_files(&root().join("tests/data/rsl/conformance"));
     let mut failures = String::new();
     for f in &files {
         if let Err(e) = compile_file(f, &CompileOptions::default()) {
@@ -95,7 +95,7 @@ fn conformance_programs_compile() {
 
 #[test]
 fn diagnostics_programs_report_at_the_stated_position() {
-    let files = sl_files(&root().join("tests/rsl/diagnostics"));
+    let files = sl_files(&root().join("tests/data/rsl/diagnostics"));
     let mut failures = String::new();
     for f in &files {
         let text = std::fs::read_to_string(f).unwrap_or_default();

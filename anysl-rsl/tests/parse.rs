@@ -849,19 +849,19 @@ fn sl_files(dir: &Path, out: &mut Vec<PathBuf>) {
     }
 }
 
-/// Every `.sl` file under shaders/rsl and tests/rsl/conformance parses without errors
-/// (tests/rsl/diagnostics holds files that are meant to fail).
+/// Every `.sl` file under shaders/rsl and tests/data/rsl/conformance parses without errors
+/// (tests/data/rsl/diagnostics holds files that are meant to fail).
 #[test]
 fn repository_shaders_parse() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
     let mut files = Vec::new();
     sl_files(&root.join("shaders/rsl"), &mut files);
-    sl_files(&root.join("tests/rsl/conformance"), &mut files);
+    sl_files(&root.join("tests/data/rsl/conformance"), &mut files);
     files.sort();
     let mut failures = String::new();
     for f in &files {
         let opts = PpOptions {
-            include_dirs: vec![root.join("shaders/rsl/include"), root.join("tests/rsl/include")],
+            include_dirs: vec![root.join("shaders/rsl/include"), root.join("tests/data/rsl/include")],
             defines: vec![],
         };
         let mut sources = SourceMap::new();
@@ -874,12 +874,12 @@ fn repository_shaders_parse() {
     assert!(failures.is_empty(), "{failures}");
 }
 
-/// The files in tests/rsl/diagnostics never crash the front end.
+/// The files in tests/data/rsl/diagnostics never crash the front end.
 #[test]
 fn diagnostic_files_do_not_panic() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
     let mut files = Vec::new();
-    sl_files(&root.join("tests/rsl/diagnostics"), &mut files);
+    sl_files(&root.join("tests/data/rsl/diagnostics"), &mut files);
     for f in &files {
         let mut sources = SourceMap::new();
         let mut diags = Diagnostics::new();

@@ -21,7 +21,7 @@ pub fn rsl_dir() -> PathBuf {
 
 /// The conformance suite.
 pub fn conformance_dir() -> PathBuf {
-    PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../tests/rsl/conformance"))
+    PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../tests/data/rsl/conformance"))
 }
 
 fn include_dirs(file: &Path) -> Vec<PathBuf> {

@@ -71,7 +71,7 @@ enum JitCommand {
     /// generic Rust for the Table-1 shaders, the interpreter at the same type otherwise) on
     /// random points; max error in ulps. Default files: shaders/rsl and the conformance suite.
     Check {
-        /// `.sl` files (default: every shader in shaders/rsl and tests/rsl/conformance).
+        /// `.sl` files (default: every shader in shaders/rsl and tests/data/rsl/conformance).
         files: Vec<PathBuf>,
         /// Random points per comparison.
         #[arg(long, default_value_t = 10000)]

@@ -1,5 +1,5 @@
-//! The eval harness of the RSL conformance suite (`tests/rsl/README.md`), shared by every back
-//! end's conformance test: the directives at the top of each `tests/rsl/conformance/*.sl`, the
+//! The eval harness of the RSL conformance suite (`tests/data/rsl/README.md`), shared by every back
+//! end's conformance test: the directives at the top of each `tests/data/rsl/conformance/*.sl`, the
 //! globals of the 1×1 (or `w × h`) grid, and the check of `// expect:` lines against a shader's
 //! outputs.
 //!
@@ -99,7 +99,7 @@ pub fn parse_directives(text: &str) -> Directives {
     d
 }
 
-/// The globals of grid point `(i, j)` of a `w × h` grid (tests/rsl/README.md):
+/// The globals of grid point `(i, j)` of a `w × h` grid (tests/data/rsl/README.md):
 /// `u = (i + ½)/w`, `v = (j + ½)/h`, `s = u`, `t = v`, `du = 1/w`, `dv = 1/h`, `P = (u, v, 0)`,
 /// `N = Ng = (0, 0, 1)`, `E = (0, 0, 3)`, `I = P − E`, `dPdu = (1, 0, 0)`, `dPdv = (0, 1, 0)`,
 /// `Cs = Os = 1`, then the `// global:` overrides (setting `P` also sets `I = P − E`). With

@@ -89,7 +89,7 @@ const GOLDEN_MAX_LEVELS: u8 = 12;
 const GOLDEN_SIZE: u32 = 48;
 
 fn golden_dir() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("golden")
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("data").join("golden")
 }
 
 /// PSNR in dB of two 8-bit buffers (peak 255) and their largest difference.
@@ -101,7 +101,7 @@ fn compare8(a: &[u8], b: &[u8]) -> (f64, u8) {
     (psnr, max)
 }
 
-/// Compares `img` with `tests/golden/<name>.png`. With `ANYSL_BLESS=1` the golden image is
+/// Compares `img` with `tests/data/golden/<name>.png`. With `ANYSL_BLESS=1` the golden image is
 /// (re)written instead. On a mismatch `<name>-actual.png` and `<name>-diff.png` (differences ×8)
 /// are written next to it.
 fn check_golden(name: &str, img: &Image) -> Result<(), String> {

@@ -23,7 +23,7 @@ fn eval<F: ShadingFloat>(jit: &JitShader, d: &Directives, lights: &[Light]) -> R
 
 #[test]
 fn conformance_suite_through_the_jit_eval_entry() {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("rsl").join("conformance");
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("data").join("rsl").join("conformance");
     let mut files: Vec<_> = std::fs::read_dir(&dir)
         .expect("conformance dir")
         .filter_map(|e| e.ok().map(|e| e.path()))

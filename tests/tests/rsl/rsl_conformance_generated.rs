@@ -1,4 +1,4 @@
-//! The RSL conformance suite (`tests/rsl/conformance`, see `tests/rsl/README.md`) through
+//! The RSL conformance suite (`tests/data/rsl/conformance`, see `tests/data/rsl/README.md`) through
 //! generated Rust: `tests/build.rs` generates every program; each runs on the eval harness's
 //! 1×1 grid with the table1 lights (at f32, or `Dual<f32>` when it uses derivatives) and every
 //! `// expect:` is checked within its tolerance.
@@ -62,7 +62,7 @@ impl Visitor for Eval<'_> {
 
 #[test]
 fn conformance_suite_through_generated_rust() {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("rsl").join("conformance");
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("data").join("rsl").join("conformance");
     let table1 = table1_lights();
     let mut failures = Vec::new();
     let mut passed = 0;

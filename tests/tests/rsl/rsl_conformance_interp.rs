@@ -1,4 +1,4 @@
-//! The RSL conformance suite (`tests/rsl/conformance`, see `tests/rsl/README.md`) through the
+//! The RSL conformance suite (`tests/data/rsl/conformance`, see `tests/data/rsl/README.md`) through the
 //! batched interpreter: every program compiled at test time, run on the eval harness's 1×1 grid
 //! with the table1 lights, at `f32` (or `Dual<f32>` when it uses derivatives), at `F32x8` (all
 //! lanes must agree with the scalar run), and as a batch of several chunks; every `// expect:`
@@ -74,7 +74,7 @@ fn as_refs(o: &[(String, Vec<f64>)]) -> Vec<(&str, Vec<f64>)> {
 
 #[test]
 fn conformance_suite_through_the_interpreter() {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("rsl").join("conformance");
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("data").join("rsl").join("conformance");
     let mut files: Vec<_> = std::fs::read_dir(&dir)
         .expect("conformance dir")
         .filter_map(|e| e.ok().map(|e| e.path()))
