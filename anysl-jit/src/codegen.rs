@@ -24,6 +24,7 @@ use crate::abi::{self, Host, GLOBAL_ORDER};
 use crate::rt::{self, RtKind};
 use anysl_rsl::builtins::Builtin;
 use anysl_rsl::ir::{self, BinOp, Block, Const, Function, Global, Node, Op, SlotId, SlotKind, UnOp, Value};
+use anysl_rsl::passes::lights::{ambient_partners, calls_ambient, NormalSrc};
 use anysl_rsl::passes::Analyzed;
 use anysl_rsl::types::{BaseType, Detail, Type};
 use inkwell::attributes::{Attribute, AttributeLoc};
@@ -176,78 +177,10 @@ pub struct Cg<'c, 'm> {
     slot_stores: Vec<std::cell::Cell<u32>>,
     /// `ambient()` calls followed by a `diffuse(N)` under the same mask whose normal is
     /// known at the `ambient()` call ([`ambient_partners`]).
-    amb_partner: HashMap<u32, NormalSrc>,
+    amb_partner: HashMap<Value, NormalSrc>,
     /// Light calls made now call the renderer even when the context describes its lights
     /// as data ([`Cg::light_call`]).
     lights_by_renderer: bool,
-}
-
-/// Where the normal of the `diffuse(N)` that follows an `ambient()` call can be read at the
-/// `ambient()` call.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum NormalSrc {
-    /// A variable not written between the two calls.
-    Slot(SlotId),
-    /// A value computed before the `ambient()` call in the same block.
-    Value(Value),
-}
-
-/// For every `ambient()` call followed, in the same block and with only instructions and
-/// stores in between (so under the same mask), by a `diffuse(N)` whose normal can be read at
-/// the `ambient()` call: that normal. Matte-like shaders (`Ka·ambient() + Kd·diffuse(Nf)`)
-/// then visit the lights once for both ([`Cg::lit_call`]).
-fn ambient_partners(func: &Function) -> HashMap<u32, NormalSrc> {
-    fn is_call(func: &Function, v: Value, want: Builtin, nargs: usize) -> bool {
-        let i = func.inst(v);
-        matches!(&i.op, Op::Call { builtin, .. } if *builtin == want) && i.args.len() == nargs
-    }
-    fn walk(func: &Function, block: &Block, out: &mut HashMap<u32, NormalSrc>) {
-        for (i, node) in block.iter().enumerate() {
-            match node {
-                Node::Inst(v) if is_call(func, *v, Builtin::Ambient, 0) => {
-                    let mut stored = Vec::new();
-                    for later in &block[i + 1..] {
-                        match later {
-                            Node::Inst(w) if is_call(func, *w, Builtin::Diffuse, 1) => {
-                                let a = func.inst(*w).args[0];
-                                let src = match func.inst(a).op {
-                                    Op::Load(s) if !stored.contains(&s) && func.slot(s).ty.array.is_none() => {
-                                        Some(NormalSrc::Slot(s))
-                                    }
-                                    _ if block[..i].contains(&Node::Inst(a)) => Some(NormalSrc::Value(a)),
-                                    _ => None,
-                                };
-                                if let Some(src) = src {
-                                    out.insert(v.0, src);
-                                }
-                                break;
-                            }
-                            Node::Inst(_) => {}
-                            Node::Store { slot, .. } => stored.push(*slot),
-                            _ => break,
-                        }
-                    }
-                }
-                Node::Inst(_) | Node::Store { .. } | Node::Break(_) | Node::Continue(_) | Node::Return => {}
-                Node::If { then, otherwise, .. } => {
-                    walk(func, then, out);
-                    walk(func, otherwise, out);
-                }
-                Node::Loop { header, body, step, .. } => {
-                    walk(func, header, out);
-                    walk(func, body, out);
-                    walk(func, step, out);
-                }
-                Node::Frame(b)
-                | Node::Illuminance { body: b, .. }
-                | Node::Illuminate { body: b, .. }
-                | Node::Solar { body: b, .. } => walk(func, b, out),
-            }
-        }
-    }
-    let mut out = HashMap::new();
-    walk(func, &func.body, &mut out);
-    out
 }
 
 /// Where a light call's normal comes from, as far as the code generator can tell: the same
@@ -1141,8 +1074,7 @@ impl<'c, 'm> Cg<'c, 'm> {
         if self.t.dual || args.len() != 7 {
             return None;
         }
-        let amb = self.func.insts.iter().any(|i| matches!(&i.op, Op::Call { builtin: Builtin::Ambient, .. }));
-        Some(if amb { 2 } else { 1 })
+        Some(if calls_ambient(self.func) { 2 } else { 1 })
     }
 
     /// Call `v`, with the light sums of `specular` kept for the `diffuse(N)` and `ambient()`
@@ -1225,7 +1157,7 @@ impl<'c, 'm> Cg<'c, 'm> {
         if self.t.dual {
             return None;
         }
-        let (n, key) = match *self.amb_partner.get(&v.0)? {
+        let (n, key) = match *self.amb_partner.get(&v)? {
             NormalSrc::Slot(s) => {
                 (Self::plain_triple(&self.load_slot(s))?, NormalKey::Slot(s, self.slot_stores[s.0 as usize].get()))
             }
