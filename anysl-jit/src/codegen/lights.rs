@@ -111,7 +111,7 @@ impl<'c> Cg<'c, '_> {
         body: &anysl_rsl::ir::Block,
         lights: PointerValue<'c>,
         n: IntValue<'c>,
-    ) -> super::R<()> {
+    ) -> super::value::R<()> {
         let func = self.cur_fn();
         let i64t = self.cx.i64_type();
         let ps = self.nums(position)?;

@@ -11,7 +11,7 @@
 //! straight from registers to the caller's arrays. What does not vary stays in the context's
 //! `Globals` as the caller set it.
 
-use super::Cg;
+use super::{Cg, POINTS_NAME};
 use crate::abi::{self, GLOBAL_VALUES};
 use crate::JitError;
 use inkwell::attributes::{Attribute, AttributeLoc};
@@ -19,9 +19,6 @@ use inkwell::module::Linkage;
 use inkwell::types::BasicType;
 use inkwell::values::{BasicValue, FunctionValue, PointerValue};
 use inkwell::{AddressSpace, IntPredicate};
-
-/// Name of the generated points entry.
-pub const POINTS_NAME: &str = "anysl_shade_points";
 
 impl<'c> Cg<'c, '_> {
     /// Builds the points entry around `shade` (the function [`Cg::generate`] made, which

@@ -4,10 +4,14 @@
 //! [`optimize`] runs them in that order and returns an [`Analyzed`] module: the one thing the
 //! back ends (the interpreter's [`crate::back::interp::Program`], the Rust generator, the
 //! JIT) take, so none of them can be handed a module whose analyses have not run.
+//!
+//! [`lights`] is an analysis a back end runs on an analyzed module for itself, not a pass:
+//! which calls of the built-in light loops can share one visit of the lights.
 
 pub mod analysis;
 pub mod dce;
 pub mod fold;
+pub mod lights;
 
 use crate::ir::{Const, Module};
 

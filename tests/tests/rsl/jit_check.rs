@@ -38,7 +38,9 @@ fn pair<F: ShadingFloat>(jit: &JitShader, aot: Option<&Surface>, set: &PointSet,
 
 fn files() -> Vec<PathBuf> {
     let mut out = Vec::new();
-    for dir in [root().join("shaders/rsl"), root().join("shaders/rsl/standard"), root().join("tests/data/rsl/conformance")] {
+    for dir in
+        [root().join("shaders/rsl"), root().join("shaders/rsl/standard"), root().join("tests/data/rsl/conformance")]
+    {
         let mut v: Vec<PathBuf> = std::fs::read_dir(&dir)
             .into_iter()
             .flatten()
