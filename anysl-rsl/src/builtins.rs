@@ -440,919 +440,433 @@ const fn ov(
     Overload { builtin, key, ret, params, variadic, imp, always_varying }
 }
 
-/// Every overload of every built-in, grouped by function.
-pub static OVERLOADS: &[Overload] = &[
-    ov(B::Radians, "radians_f", Float, &[F], None, "stdlib::radians", false),
-    ov(B::Degrees, "degrees_f", Float, &[F], None, "stdlib::degrees", false),
-    ov(B::Sin, "sin_f", Float, &[F], None, "F::sin", false),
-    ov(B::Asin, "asin_f", Float, &[F], None, "F::asin", false),
-    ov(B::Cos, "cos_f", Float, &[F], None, "F::cos", false),
-    ov(B::Acos, "acos_f", Float, &[F], None, "F::acos", false),
-    ov(B::Tan, "tan_f", Float, &[F], None, "F::tan", false),
-    ov(B::Exp, "exp_f", Float, &[F], None, "F::exp", false),
-    ov(B::Sqrt, "sqrt_f", Float, &[F], None, "F::sqrt", false),
-    ov(B::InverseSqrt, "inversesqrt_f", Float, &[F], None, "stdlib::inversesqrt", false),
-    ov(B::Abs, "abs_f", Float, &[F], None, "F::abs", false),
-    ov(B::Sign, "sign_f", Float, &[F], None, "stdlib::sign", false),
-    ov(B::Floor, "floor_f", Float, &[F], None, "F::floor", false),
-    ov(B::Ceil, "ceil_f", Float, &[F], None, "F::ceil", false),
-    ov(B::Round, "round_f", Float, &[F], None, "F::round", false),
-    ov(B::Atan, "atan_f", Float, &[F], None, "F::atan", false),
-    ov(B::Atan, "atan_ff", Float, &[F, F], None, "F::atan2", false),
-    ov(B::Pow, "pow_ff", Float, &[F, F], None, "F::powf", false),
-    ov(B::Log, "log_f", Float, &[F], None, "F::ln", false),
-    ov(B::Log, "log_ff", Float, &[F, F], None, "stdlib::log_base", false),
-    ov(B::Mod, "mod_ff", Float, &[F, F], None, "stdlib::fmod", false),
-    ov(B::Min, "min_ff_fs", Float, &[F, F], Some(Variadic::Repeat(Float)), "F::min per component", false),
-    ov(B::Min, "min_cc_cs", Color, &[C, C], Some(Variadic::Repeat(Color)), "F::min per component", false),
-    ov(B::Min, "min_pp_ps", Point, &[P, P], Some(Variadic::Repeat(Point)), "F::min per component", false),
-    ov(B::Min, "min_vv_vs", Vector, &[V, V], Some(Variadic::Repeat(Vector)), "F::min per component", false),
-    ov(B::Min, "min_nn_ns", Normal, &[N, N], Some(Variadic::Repeat(Normal)), "F::min per component", false),
-    ov(B::Max, "max_ff_fs", Float, &[F, F], Some(Variadic::Repeat(Float)), "F::max per component", false),
-    ov(B::Max, "max_cc_cs", Color, &[C, C], Some(Variadic::Repeat(Color)), "F::max per component", false),
-    ov(B::Max, "max_pp_ps", Point, &[P, P], Some(Variadic::Repeat(Point)), "F::max per component", false),
-    ov(B::Max, "max_vv_vs", Vector, &[V, V], Some(Variadic::Repeat(Vector)), "F::max per component", false),
-    ov(B::Max, "max_nn_ns", Normal, &[N, N], Some(Variadic::Repeat(Normal)), "F::max per component", false),
-    ov(B::Clamp, "clamp_fff", Float, &[F, F, F], None, "stdlib::clamp per component", false),
-    ov(B::Clamp, "clamp_ccc", Color, &[C, C, C], None, "stdlib::clamp per component", false),
-    ov(B::Clamp, "clamp_ppp", Point, &[P, P, P], None, "stdlib::clamp per component", false),
-    ov(B::Clamp, "clamp_vvv", Vector, &[V, V, V], None, "stdlib::clamp per component", false),
-    ov(B::Clamp, "clamp_nnn", Normal, &[N, N, N], None, "stdlib::clamp per component", false),
-    ov(B::Mix, "mix_fff", Float, &[F, F, F], None, "stdlib::mix", false),
-    ov(B::Mix, "mix_ccf", Color, &[C, C, F], None, "stdlib::mix per component", false),
-    ov(B::Mix, "mix_ccc", Color, &[C, C, C], None, "stdlib::mix per component", false),
-    ov(B::Mix, "mix_ppf", Point, &[P, P, F], None, "stdlib::mix per component", false),
-    ov(B::Mix, "mix_ppp", Point, &[P, P, P], None, "stdlib::mix per component", false),
-    ov(B::Mix, "mix_vvf", Vector, &[V, V, F], None, "stdlib::mix per component", false),
-    ov(B::Mix, "mix_vvv", Vector, &[V, V, V], None, "stdlib::mix per component", false),
-    ov(B::Mix, "mix_nnf", Normal, &[N, N, F], None, "stdlib::mix per component", false),
-    ov(B::Mix, "mix_nnn", Normal, &[N, N, N], None, "stdlib::mix per component", false),
-    ov(B::Step, "step_ff", Float, &[F, F], None, "stdlib::step", false),
-    ov(B::SmoothStep, "smoothstep_fff", Float, &[F, F, F], None, "stdlib::smoothstep", false),
-    ov(B::FilterStep, "filterstep_ff_opt", Float, &[F, F], Some(Variadic::NameValue), "stdlib::filterstep", false),
-    ov(
-        B::FilterStep,
-        "filterstep_fff_opt",
-        Float,
-        &[F, F, F],
-        Some(Variadic::NameValue),
-        "stdlib::filterstep (s1, s2 form: width |s2 - s1|)",
-        false,
-    ),
-    ov(
-        B::Spline,
-        "spline_ffff_fs",
-        Float,
-        &[F, F, F, F],
-        Some(Variadic::Repeat(Float)),
-        "stdlib::spline (catmull-rom)",
-        false,
-    ),
-    ov(
-        B::Spline,
-        "spline_sffff_fs",
-        Float,
-        &[S, F, F, F, F],
-        Some(Variadic::Repeat(Float)),
-        "stdlib::spline (SplineBasis::from_name)",
-        false,
-    ),
-    ov(B::Spline, "spline_ffa", Float, &[F, arr(Float)], None, "stdlib::spline (catmull-rom, array knots)", false),
-    ov(
-        B::Spline,
-        "spline_sffa",
-        Float,
-        &[S, F, arr(Float)],
-        None,
-        "stdlib::spline (SplineBasis::from_name, array knots)",
-        false,
-    ),
-    ov(
-        B::Spline,
-        "spline_fccc_cs",
-        Color,
-        &[F, C, C, C],
-        Some(Variadic::Repeat(Color)),
-        "stdlib::spline (catmull-rom)",
-        false,
-    ),
-    ov(
-        B::Spline,
-        "spline_sfccc_cs",
-        Color,
-        &[S, F, C, C, C],
-        Some(Variadic::Repeat(Color)),
-        "stdlib::spline (SplineBasis::from_name)",
-        false,
-    ),
-    ov(B::Spline, "spline_fca", Color, &[F, arr(Color)], None, "stdlib::spline (catmull-rom, array knots)", false),
-    ov(
-        B::Spline,
-        "spline_sfca",
-        Color,
-        &[S, F, arr(Color)],
-        None,
-        "stdlib::spline (SplineBasis::from_name, array knots)",
-        false,
-    ),
-    ov(
-        B::Spline,
-        "spline_fppp_ps",
-        Point,
-        &[F, P, P, P],
-        Some(Variadic::Repeat(Point)),
-        "stdlib::spline (catmull-rom)",
-        false,
-    ),
-    ov(
-        B::Spline,
-        "spline_sfppp_ps",
-        Point,
-        &[S, F, P, P, P],
-        Some(Variadic::Repeat(Point)),
-        "stdlib::spline (SplineBasis::from_name)",
-        false,
-    ),
-    ov(B::Spline, "spline_fpa", Point, &[F, arr(Point)], None, "stdlib::spline (catmull-rom, array knots)", false),
-    ov(
-        B::Spline,
-        "spline_sfpa",
-        Point,
-        &[S, F, arr(Point)],
-        None,
-        "stdlib::spline (SplineBasis::from_name, array knots)",
-        false,
-    ),
-    ov(
-        B::Spline,
-        "spline_fvvv_vs",
-        Vector,
-        &[F, V, V, V],
-        Some(Variadic::Repeat(Vector)),
-        "stdlib::spline (catmull-rom)",
-        false,
-    ),
-    ov(
-        B::Spline,
-        "spline_sfvvv_vs",
-        Vector,
-        &[S, F, V, V, V],
-        Some(Variadic::Repeat(Vector)),
-        "stdlib::spline (SplineBasis::from_name)",
-        false,
-    ),
-    ov(B::Spline, "spline_fva", Vector, &[F, arr(Vector)], None, "stdlib::spline (catmull-rom, array knots)", false),
-    ov(
-        B::Spline,
-        "spline_sfva",
-        Vector,
-        &[S, F, arr(Vector)],
-        None,
-        "stdlib::spline (SplineBasis::from_name, array knots)",
-        false,
-    ),
-    ov(
-        B::Spline,
-        "spline_fnnn_ns",
-        Normal,
-        &[F, N, N, N],
-        Some(Variadic::Repeat(Normal)),
-        "stdlib::spline (catmull-rom)",
-        false,
-    ),
-    ov(
-        B::Spline,
-        "spline_sfnnn_ns",
-        Normal,
-        &[S, F, N, N, N],
-        Some(Variadic::Repeat(Normal)),
-        "stdlib::spline (SplineBasis::from_name)",
-        false,
-    ),
-    ov(B::Spline, "spline_fna", Normal, &[F, arr(Normal)], None, "stdlib::spline (catmull-rom, array knots)", false),
-    ov(
-        B::Spline,
-        "spline_sfna",
-        Normal,
-        &[S, F, arr(Normal)],
-        None,
-        "stdlib::spline (SplineBasis::from_name, array knots)",
-        false,
-    ),
-    ov(B::Du, "Du_f", Float, &[F], None, "stdlib::du", false),
-    ov(B::Dv, "Dv_f", Float, &[F], None, "stdlib::dv", false),
-    ov(B::Deriv, "Deriv_ff", Float, &[F, F], None, "stdlib::deriv", false),
-    ov(B::Du, "Du_c", Color, &[C], None, "stdlib::du / du_vec per component", false),
-    ov(B::Dv, "Dv_c", Color, &[C], None, "stdlib::dv / dv_vec per component", false),
-    ov(B::Deriv, "Deriv_cf", Color, &[C, F], None, "stdlib::deriv per component", false),
-    ov(B::Du, "Du_p", Vector, &[P], None, "stdlib::du / du_vec per component", false),
-    ov(B::Dv, "Dv_p", Vector, &[P], None, "stdlib::dv / dv_vec per component", false),
-    ov(B::Deriv, "Deriv_pf", Vector, &[P, F], None, "stdlib::deriv per component", false),
-    ov(B::Du, "Du_v", Vector, &[V], None, "stdlib::du / du_vec per component", false),
-    ov(B::Dv, "Dv_v", Vector, &[V], None, "stdlib::dv / dv_vec per component", false),
-    ov(B::Deriv, "Deriv_vf", Vector, &[V, F], None, "stdlib::deriv per component", false),
-    ov(B::Du, "Du_n", Vector, &[N], None, "stdlib::du / du_vec per component", false),
-    ov(B::Dv, "Dv_n", Vector, &[N], None, "stdlib::dv / dv_vec per component", false),
-    ov(B::Deriv, "Deriv_nf", Vector, &[N, F], None, "stdlib::deriv per component", false),
-    ov(B::Noise, "noise_ff", Float, &[F], None, "stdlib::noise (NoiseDomain::D1)", false),
-    ov(B::Noise, "noise_cf", Color, &[F], None, "stdlib::cnoise (NoiseDomain::D1)", false),
-    ov(B::Noise, "noise_pf", Point, &[F], None, "stdlib::vnoise (NoiseDomain::D1)", false),
-    ov(B::Noise, "noise_vf", Vector, &[F], None, "stdlib::vnoise (NoiseDomain::D1)", false),
-    ov(B::Noise, "noise_fff", Float, &[F, F], None, "stdlib::noise (NoiseDomain::D2)", false),
-    ov(B::Noise, "noise_cff", Color, &[F, F], None, "stdlib::cnoise (NoiseDomain::D2)", false),
-    ov(B::Noise, "noise_pff", Point, &[F, F], None, "stdlib::vnoise (NoiseDomain::D2)", false),
-    ov(B::Noise, "noise_vff", Vector, &[F, F], None, "stdlib::vnoise (NoiseDomain::D2)", false),
-    ov(B::Noise, "noise_fp", Float, &[P], None, "stdlib::noise (NoiseDomain::D3)", false),
-    ov(B::Noise, "noise_cp", Color, &[P], None, "stdlib::cnoise (NoiseDomain::D3)", false),
-    ov(B::Noise, "noise_pp", Point, &[P], None, "stdlib::vnoise (NoiseDomain::D3)", false),
-    ov(B::Noise, "noise_vp", Vector, &[P], None, "stdlib::vnoise (NoiseDomain::D3)", false),
-    ov(B::Noise, "noise_fpf", Float, &[P, F], None, "stdlib::noise (NoiseDomain::D4)", false),
-    ov(B::Noise, "noise_cpf", Color, &[P, F], None, "stdlib::cnoise (NoiseDomain::D4)", false),
-    ov(B::Noise, "noise_ppf", Point, &[P, F], None, "stdlib::vnoise (NoiseDomain::D4)", false),
-    ov(B::Noise, "noise_vpf", Vector, &[P, F], None, "stdlib::vnoise (NoiseDomain::D4)", false),
-    ov(B::CellNoise, "cellnoise_ff", Float, &[F], None, "stdlib::cellnoise (NoiseDomain::D1)", false),
-    ov(B::CellNoise, "cellnoise_cf", Color, &[F], None, "stdlib::vcellnoise (NoiseDomain::D1)", false),
-    ov(B::CellNoise, "cellnoise_pf", Point, &[F], None, "stdlib::vcellnoise (NoiseDomain::D1)", false),
-    ov(B::CellNoise, "cellnoise_vf", Vector, &[F], None, "stdlib::vcellnoise (NoiseDomain::D1)", false),
-    ov(B::CellNoise, "cellnoise_fff", Float, &[F, F], None, "stdlib::cellnoise (NoiseDomain::D2)", false),
-    ov(B::CellNoise, "cellnoise_cff", Color, &[F, F], None, "stdlib::vcellnoise (NoiseDomain::D2)", false),
-    ov(B::CellNoise, "cellnoise_pff", Point, &[F, F], None, "stdlib::vcellnoise (NoiseDomain::D2)", false),
-    ov(B::CellNoise, "cellnoise_vff", Vector, &[F, F], None, "stdlib::vcellnoise (NoiseDomain::D2)", false),
-    ov(B::CellNoise, "cellnoise_fp", Float, &[P], None, "stdlib::cellnoise (NoiseDomain::D3)", false),
-    ov(B::CellNoise, "cellnoise_cp", Color, &[P], None, "stdlib::vcellnoise (NoiseDomain::D3)", false),
-    ov(B::CellNoise, "cellnoise_pp", Point, &[P], None, "stdlib::vcellnoise (NoiseDomain::D3)", false),
-    ov(B::CellNoise, "cellnoise_vp", Vector, &[P], None, "stdlib::vcellnoise (NoiseDomain::D3)", false),
-    ov(B::CellNoise, "cellnoise_fpf", Float, &[P, F], None, "stdlib::cellnoise (NoiseDomain::D4)", false),
-    ov(B::CellNoise, "cellnoise_cpf", Color, &[P, F], None, "stdlib::vcellnoise (NoiseDomain::D4)", false),
-    ov(B::CellNoise, "cellnoise_ppf", Point, &[P, F], None, "stdlib::vcellnoise (NoiseDomain::D4)", false),
-    ov(B::CellNoise, "cellnoise_vpf", Vector, &[P, F], None, "stdlib::vcellnoise (NoiseDomain::D4)", false),
-    ov(B::SNoise, "snoise_ff", Float, &[F], None, "stdlib::snoise (NoiseDomain::D1)", false),
-    ov(B::SNoise, "snoise_cf", Color, &[F], None, "stdlib::vsnoise (NoiseDomain::D1)", false),
-    ov(B::SNoise, "snoise_pf", Point, &[F], None, "stdlib::vsnoise (NoiseDomain::D1)", false),
-    ov(B::SNoise, "snoise_vf", Vector, &[F], None, "stdlib::vsnoise (NoiseDomain::D1)", false),
-    ov(B::SNoise, "snoise_fff", Float, &[F, F], None, "stdlib::snoise (NoiseDomain::D2)", false),
-    ov(B::SNoise, "snoise_cff", Color, &[F, F], None, "stdlib::vsnoise (NoiseDomain::D2)", false),
-    ov(B::SNoise, "snoise_pff", Point, &[F, F], None, "stdlib::vsnoise (NoiseDomain::D2)", false),
-    ov(B::SNoise, "snoise_vff", Vector, &[F, F], None, "stdlib::vsnoise (NoiseDomain::D2)", false),
-    ov(B::SNoise, "snoise_fp", Float, &[P], None, "stdlib::snoise (NoiseDomain::D3)", false),
-    ov(B::SNoise, "snoise_cp", Color, &[P], None, "stdlib::vsnoise (NoiseDomain::D3)", false),
-    ov(B::SNoise, "snoise_pp", Point, &[P], None, "stdlib::vsnoise (NoiseDomain::D3)", false),
-    ov(B::SNoise, "snoise_vp", Vector, &[P], None, "stdlib::vsnoise (NoiseDomain::D3)", false),
-    ov(B::SNoise, "snoise_fpf", Float, &[P, F], None, "stdlib::snoise (NoiseDomain::D4)", false),
-    ov(B::SNoise, "snoise_cpf", Color, &[P, F], None, "stdlib::vsnoise (NoiseDomain::D4)", false),
-    ov(B::SNoise, "snoise_ppf", Point, &[P, F], None, "stdlib::vsnoise (NoiseDomain::D4)", false),
-    ov(B::SNoise, "snoise_vpf", Vector, &[P, F], None, "stdlib::vsnoise (NoiseDomain::D4)", false),
-    ov(B::PNoise, "pnoise_fff", Float, &[F, F], None, "stdlib::pnoise (NoiseDomain::D1)", false),
-    ov(B::PNoise, "pnoise_cff", Color, &[F, F], None, "stdlib::vpnoise (NoiseDomain::D1)", false),
-    ov(B::PNoise, "pnoise_pff", Point, &[F, F], None, "stdlib::vpnoise (NoiseDomain::D1)", false),
-    ov(B::PNoise, "pnoise_vff", Vector, &[F, F], None, "stdlib::vpnoise (NoiseDomain::D1)", false),
-    ov(B::PNoise, "pnoise_fffff", Float, &[F, F, F, F], None, "stdlib::pnoise (NoiseDomain::D2)", false),
-    ov(B::PNoise, "pnoise_cffff", Color, &[F, F, F, F], None, "stdlib::vpnoise (NoiseDomain::D2)", false),
-    ov(B::PNoise, "pnoise_pffff", Point, &[F, F, F, F], None, "stdlib::vpnoise (NoiseDomain::D2)", false),
-    ov(B::PNoise, "pnoise_vffff", Vector, &[F, F, F, F], None, "stdlib::vpnoise (NoiseDomain::D2)", false),
-    ov(B::PNoise, "pnoise_fpp", Float, &[P, P], None, "stdlib::pnoise (NoiseDomain::D3)", false),
-    ov(B::PNoise, "pnoise_cpp", Color, &[P, P], None, "stdlib::vpnoise (NoiseDomain::D3)", false),
-    ov(B::PNoise, "pnoise_ppp", Point, &[P, P], None, "stdlib::vpnoise (NoiseDomain::D3)", false),
-    ov(B::PNoise, "pnoise_vpp", Vector, &[P, P], None, "stdlib::vpnoise (NoiseDomain::D3)", false),
-    ov(B::PNoise, "pnoise_fpfpf", Float, &[P, F, P, F], None, "stdlib::pnoise (NoiseDomain::D4)", false),
-    ov(B::PNoise, "pnoise_cpfpf", Color, &[P, F, P, F], None, "stdlib::vpnoise (NoiseDomain::D4)", false),
-    ov(B::PNoise, "pnoise_ppfpf", Point, &[P, F, P, F], None, "stdlib::vpnoise (NoiseDomain::D4)", false),
-    ov(B::PNoise, "pnoise_vpfpf", Vector, &[P, F, P, F], None, "stdlib::vpnoise (NoiseDomain::D4)", false),
-    ov(B::PSNoise, "psnoise_fff", Float, &[F, F], None, "stdlib::psnoise (NoiseDomain::D1)", false),
-    ov(
-        B::PSNoise,
-        "psnoise_cff",
-        Color,
-        &[F, F],
-        None,
-        "stdlib::vpnoise, remapped to [-1, 1] (NoiseDomain::D1)",
-        false,
-    ),
-    ov(
-        B::PSNoise,
-        "psnoise_pff",
-        Point,
-        &[F, F],
-        None,
-        "stdlib::vpnoise, remapped to [-1, 1] (NoiseDomain::D1)",
-        false,
-    ),
-    ov(
-        B::PSNoise,
-        "psnoise_vff",
-        Vector,
-        &[F, F],
-        None,
-        "stdlib::vpnoise, remapped to [-1, 1] (NoiseDomain::D1)",
-        false,
-    ),
-    ov(B::PSNoise, "psnoise_fffff", Float, &[F, F, F, F], None, "stdlib::psnoise (NoiseDomain::D2)", false),
-    ov(
-        B::PSNoise,
-        "psnoise_cffff",
-        Color,
-        &[F, F, F, F],
-        None,
-        "stdlib::vpnoise, remapped to [-1, 1] (NoiseDomain::D2)",
-        false,
-    ),
-    ov(
-        B::PSNoise,
-        "psnoise_pffff",
-        Point,
-        &[F, F, F, F],
-        None,
-        "stdlib::vpnoise, remapped to [-1, 1] (NoiseDomain::D2)",
-        false,
-    ),
-    ov(
-        B::PSNoise,
-        "psnoise_vffff",
-        Vector,
-        &[F, F, F, F],
-        None,
-        "stdlib::vpnoise, remapped to [-1, 1] (NoiseDomain::D2)",
-        false,
-    ),
-    ov(B::PSNoise, "psnoise_fpp", Float, &[P, P], None, "stdlib::psnoise (NoiseDomain::D3)", false),
-    ov(
-        B::PSNoise,
-        "psnoise_cpp",
-        Color,
-        &[P, P],
-        None,
-        "stdlib::vpnoise, remapped to [-1, 1] (NoiseDomain::D3)",
-        false,
-    ),
-    ov(
-        B::PSNoise,
-        "psnoise_ppp",
-        Point,
-        &[P, P],
-        None,
-        "stdlib::vpnoise, remapped to [-1, 1] (NoiseDomain::D3)",
-        false,
-    ),
-    ov(
-        B::PSNoise,
-        "psnoise_vpp",
-        Vector,
-        &[P, P],
-        None,
-        "stdlib::vpnoise, remapped to [-1, 1] (NoiseDomain::D3)",
-        false,
-    ),
-    ov(B::PSNoise, "psnoise_fpfpf", Float, &[P, F, P, F], None, "stdlib::psnoise (NoiseDomain::D4)", false),
-    ov(
-        B::PSNoise,
-        "psnoise_cpfpf",
-        Color,
-        &[P, F, P, F],
-        None,
-        "stdlib::vpnoise, remapped to [-1, 1] (NoiseDomain::D4)",
-        false,
-    ),
-    ov(
-        B::PSNoise,
-        "psnoise_ppfpf",
-        Point,
-        &[P, F, P, F],
-        None,
-        "stdlib::vpnoise, remapped to [-1, 1] (NoiseDomain::D4)",
-        false,
-    ),
-    ov(
-        B::PSNoise,
-        "psnoise_vpfpf",
-        Vector,
-        &[P, F, P, F],
-        None,
-        "stdlib::vpnoise, remapped to [-1, 1] (NoiseDomain::D4)",
-        false,
-    ),
-    ov(B::Random, "random_f", Float, &[], None, "ShadingContext random stream", true),
-    ov(B::Random, "random_c", Color, &[], None, "ShadingContext random stream", true),
-    ov(B::Random, "random_p", Point, &[], None, "ShadingContext random stream", true),
-    ov(B::Random, "random_v", Vector, &[], None, "ShadingContext random stream", true),
-    ov(
-        B::Fbm,
-        "fbm_ffff",
-        Float,
-        &[F, F, F, F],
-        None,
-        "stdlib::fbm (NoiseDomain::D1; octaves rounded, uniform)",
-        false,
-    ),
-    ov(
-        B::Fbm,
-        "fbm_pfff",
-        Float,
-        &[P, F, F, F],
-        None,
-        "stdlib::fbm (NoiseDomain::D3; octaves rounded, uniform)",
-        false,
-    ),
-    ov(
-        B::Fbm,
-        "fbm_pffff",
-        Float,
-        &[P, F, F, F, F],
-        None,
-        "stdlib::fbm (NoiseDomain::D4; octaves rounded, uniform)",
-        false,
-    ),
-    ov(
-        B::Turbulence,
-        "turbulence_ffff",
-        Float,
-        &[F, F, F, F],
-        None,
-        "stdlib::turbulence (NoiseDomain::D1; octaves rounded, uniform)",
-        false,
-    ),
-    ov(
-        B::Turbulence,
-        "turbulence_pfff",
-        Float,
-        &[P, F, F, F],
-        None,
-        "stdlib::turbulence (NoiseDomain::D3; octaves rounded, uniform)",
-        false,
-    ),
-    ov(
-        B::Turbulence,
-        "turbulence_pffff",
-        Float,
-        &[P, F, F, F, F],
-        None,
-        "stdlib::turbulence (NoiseDomain::D4; octaves rounded, uniform)",
-        false,
-    ),
-    ov(B::XComp, "xcomp_p", Float, &[P], None, "Vec3::x", false),
-    ov(B::YComp, "ycomp_p", Float, &[P], None, "Vec3::y", false),
-    ov(B::ZComp, "zcomp_p", Float, &[P], None, "Vec3::z", false),
-    ov(B::XComp, "xcomp_v", Float, &[V], None, "Vec3::x", false),
-    ov(B::YComp, "ycomp_v", Float, &[V], None, "Vec3::y", false),
-    ov(B::ZComp, "zcomp_v", Float, &[V], None, "Vec3::z", false),
-    ov(B::XComp, "xcomp_n", Float, &[N], None, "Vec3::x", false),
-    ov(B::YComp, "ycomp_n", Float, &[N], None, "Vec3::y", false),
-    ov(B::ZComp, "zcomp_n", Float, &[N], None, "Vec3::z", false),
-    ov(B::SetXComp, "setxcomp_Pf", Void, &[out(Point), F], None, "Vec3::x =", false),
-    ov(B::SetYComp, "setycomp_Pf", Void, &[out(Point), F], None, "Vec3::y =", false),
-    ov(B::SetZComp, "setzcomp_Pf", Void, &[out(Point), F], None, "Vec3::z =", false),
-    ov(B::SetXComp, "setxcomp_Vf", Void, &[out(Vector), F], None, "Vec3::x =", false),
-    ov(B::SetYComp, "setycomp_Vf", Void, &[out(Vector), F], None, "Vec3::y =", false),
-    ov(B::SetZComp, "setzcomp_Vf", Void, &[out(Vector), F], None, "Vec3::z =", false),
-    ov(B::SetXComp, "setxcomp_Nf", Void, &[out(Normal), F], None, "Vec3::x =", false),
-    ov(B::SetYComp, "setycomp_Nf", Void, &[out(Normal), F], None, "Vec3::y =", false),
-    ov(B::SetZComp, "setzcomp_Nf", Void, &[out(Normal), F], None, "Vec3::z =", false),
-    ov(B::Comp, "comp_cf", Float, &[C, F], None, "component by index (clamped)", false),
-    ov(B::SetComp, "setcomp_Cff", Void, &[out(Color), F, F], None, "component by index (clamped) =", false),
-    ov(B::Comp, "comp_pf", Float, &[P, F], None, "component by index (clamped)", false),
-    ov(B::SetComp, "setcomp_Pff", Void, &[out(Point), F, F], None, "component by index (clamped) =", false),
-    ov(B::Comp, "comp_vf", Float, &[V, F], None, "component by index (clamped)", false),
-    ov(B::SetComp, "setcomp_Vff", Void, &[out(Vector), F, F], None, "component by index (clamped) =", false),
-    ov(B::Comp, "comp_nf", Float, &[N, F], None, "component by index (clamped)", false),
-    ov(B::SetComp, "setcomp_Nff", Void, &[out(Normal), F, F], None, "component by index (clamped) =", false),
-    ov(B::Comp, "comp_mff", Float, &[M, F, F], None, "Matrix4 element [row][col]", false),
-    ov(B::SetComp, "setcomp_Mfff", Void, &[out(Matrix), F, F, F], None, "Matrix4 element [row][col] =", false),
-    ov(B::Length, "length_p", Float, &[P], None, "Vec3::length", false),
-    ov(B::Length, "length_v", Float, &[V], None, "Vec3::length", false),
-    ov(B::Length, "length_n", Float, &[N], None, "Vec3::length", false),
-    ov(B::Normalize, "normalize_v", Vector, &[V], None, "Vec3::normalize", false),
-    ov(B::Normalize, "normalize_p", Vector, &[P], None, "Vec3::normalize", false),
-    ov(B::Normalize, "normalize_n", Normal, &[N], None, "Vec3::normalize", false),
-    ov(B::Distance, "distance_pp", Float, &[P, P], None, "stdlib::distance", false),
-    ov(B::PtLineD, "ptlined_ppp", Float, &[P, P, P], None, "stdlib::ptlined", false),
-    ov(B::Rotate, "rotate_pfpp", Point, &[P, F, P, P], None, "stdlib::rotate", false),
-    ov(B::Area, "area_p", Float, &[P], None, "stdlib::area", false),
-    ov(B::FaceForward, "faceforward_vv", Vector, &[V, V], None, "stdlib::faceforward with Nref = Ng", false),
-    ov(B::FaceForward, "faceforward_vvv", Vector, &[V, V, V], None, "stdlib::faceforward", false),
-    ov(B::Reflect, "reflect_vv", Vector, &[V, V], None, "stdlib::reflect", false),
-    ov(B::Refract, "refract_vvf", Vector, &[V, V, F], None, "stdlib::refract", false),
-    ov(B::Fresnel, "fresnel_vvfFF", Void, &[V, V, F, out(Float), out(Float)], None, "stdlib::fresnel (kr, kt)", false),
-    ov(
-        B::Fresnel,
-        "fresnel_vvfFFVV",
-        Void,
-        &[V, V, F, out(Float), out(Float), out(Vector), out(Vector)],
-        None,
-        "stdlib::fresnel (kr, kt, R, T)",
-        false,
-    ),
-    ov(
-        B::Transform,
-        "transform_sp",
-        Point,
-        &[S, P],
-        None,
-        "ShadingContext space matrix, Matrix4::transform_point",
-        false,
-    ),
-    ov(
-        B::Transform,
-        "transform_ssp",
-        Point,
-        &[S, S, P],
-        None,
-        "ShadingContext space matrices, Matrix4::transform_point",
-        false,
-    ),
-    ov(B::Transform, "transform_mp", Point, &[M, P], None, "Matrix4::transform_point", false),
-    ov(
-        B::Transform,
-        "transform_smp",
-        Point,
-        &[S, M, P],
-        None,
-        "ShadingContext space matrix, Matrix4::transform_point",
-        false,
-    ),
-    ov(
-        B::VTransform,
-        "vtransform_sv",
-        Vector,
-        &[S, V],
-        None,
-        "ShadingContext space matrix, Matrix4::transform_vector",
-        false,
-    ),
-    ov(
-        B::VTransform,
-        "vtransform_ssv",
-        Vector,
-        &[S, S, V],
-        None,
-        "ShadingContext space matrices, Matrix4::transform_vector",
-        false,
-    ),
-    ov(B::VTransform, "vtransform_mv", Vector, &[M, V], None, "Matrix4::transform_vector", false),
-    ov(
-        B::VTransform,
-        "vtransform_smv",
-        Vector,
-        &[S, M, V],
-        None,
-        "ShadingContext space matrix, Matrix4::transform_vector",
-        false,
-    ),
-    ov(
-        B::NTransform,
-        "ntransform_sn",
-        Normal,
-        &[S, N],
-        None,
-        "ShadingContext space matrix, Matrix4::transform_normal",
-        false,
-    ),
-    ov(
-        B::NTransform,
-        "ntransform_ssn",
-        Normal,
-        &[S, S, N],
-        None,
-        "ShadingContext space matrices, Matrix4::transform_normal",
-        false,
-    ),
-    ov(B::NTransform, "ntransform_mn", Normal, &[M, N], None, "Matrix4::transform_normal", false),
-    ov(
-        B::NTransform,
-        "ntransform_smn",
-        Normal,
-        &[S, M, N],
-        None,
-        "ShadingContext space matrix, Matrix4::transform_normal",
-        false,
-    ),
-    ov(
-        B::Transform,
-        "transform_sv",
-        Vector,
-        &[S, V],
-        None,
-        "ShadingContext space matrix, Matrix4::transform_vector",
-        false,
-    ),
-    ov(
-        B::Transform,
-        "transform_ssv",
-        Vector,
-        &[S, S, V],
-        None,
-        "ShadingContext space matrices, Matrix4::transform_vector",
-        false,
-    ),
-    ov(B::Transform, "transform_mv", Vector, &[M, V], None, "Matrix4::transform_vector", false),
-    ov(
-        B::Transform,
-        "transform_smv",
-        Vector,
-        &[S, M, V],
-        None,
-        "ShadingContext space matrix, Matrix4::transform_vector",
-        false,
-    ),
-    ov(
-        B::Transform,
-        "transform_sn",
-        Normal,
-        &[S, N],
-        None,
-        "ShadingContext space matrix, Matrix4::transform_normal",
-        false,
-    ),
-    ov(
-        B::Transform,
-        "transform_ssn",
-        Normal,
-        &[S, S, N],
-        None,
-        "ShadingContext space matrices, Matrix4::transform_normal",
-        false,
-    ),
-    ov(B::Transform, "transform_mn", Normal, &[M, N], None, "Matrix4::transform_normal", false),
-    ov(
-        B::Transform,
-        "transform_smn",
-        Normal,
-        &[S, M, N],
-        None,
-        "ShadingContext space matrix, Matrix4::transform_normal",
-        false,
-    ),
-    ov(
-        B::Depth,
-        "depth_p",
-        Float,
-        &[P],
-        None,
-        "ShadingContext camera depth (normalized by the clipping planes)",
-        false,
-    ),
-    ov(B::CalculateNormal, "calculatenormal_p", Normal, &[P], None, "stdlib::calculatenormal", false),
-    ov(B::CTransform, "ctransform_sc", Color, &[S, C], None, "stdlib::from_rgb", false),
-    ov(B::CTransform, "ctransform_ssc", Color, &[S, S, C], None, "stdlib::ctransform", false),
-    ov(B::Determinant, "determinant_m", Float, &[M], None, "Matrix4::determinant", false),
-    ov(B::Translate, "translate_mv", Matrix, &[M, V], None, "Matrix4::translate", false),
-    ov(B::Rotate, "rotate_mfv", Matrix, &[M, F, V], None, "Matrix4::rotate", false),
-    ov(B::Scale, "scale_mp", Matrix, &[M, P], None, "Matrix4::scale", false),
-    ov(B::Concat, "concat_s_ss", String, &[S], Some(Variadic::Repeat(String)), "String concatenation (uniform)", false),
-    ov(B::Printf, "printf_s_etc", Void, &[S], Some(Variadic::Any), "formatted print (side effect)", false),
-    ov(B::Format, "format_s_etc", String, &[S], Some(Variadic::Any), "formatted string", false),
-    ov(B::Match, "match_ss", Float, &[S, S], None, "regex match", false),
-    ov(B::Ambient, "ambient", Color, &[], None, "stdlib::ambient", true),
-    ov(B::Diffuse, "diffuse_n", Color, &[N], None, "stdlib::diffuse", true),
-    ov(B::Specular, "specular_nvf", Color, &[N, V, F], None, "stdlib::specular", true),
-    ov(B::SpecularBrdf, "specularbrdf_vnvf", Color, &[V, N, V, F], None, "stdlib::specularbrdf (times Cl)", true),
-    ov(B::Phong, "phong_nvf", Color, &[N, V, F], None, "stdlib::phong", true),
-    ov(B::Trace, "trace_pv", Color, &[P, V], None, "ShadingContext::trace", true),
-    ov(
-        B::Texture,
-        "texture_fs_opt",
-        Float,
-        &[S],
-        Some(Variadic::NameValue),
-        "ShadingContext texture lookup (s, t)",
-        true,
-    ),
-    ov(
-        B::Texture,
-        "texture_fsff_opt",
-        Float,
-        &[S, F, F],
-        Some(Variadic::NameValue),
-        "ShadingContext texture lookup (given coordinates)",
-        true,
-    ),
-    ov(
-        B::Texture,
-        "texture_fsffffffff_opt",
-        Float,
-        &[S, F, F, F, F, F, F, F, F],
-        Some(Variadic::NameValue),
-        "ShadingContext texture lookup (given coordinates)",
-        true,
-    ),
-    ov(
-        B::Environment,
-        "environment_fsv_opt",
-        Float,
-        &[S, V],
-        Some(Variadic::NameValue),
-        "ShadingContext::trace (environment as a ray)",
-        true,
-    ),
-    ov(
-        B::Environment,
-        "environment_fsvvvv_opt",
-        Float,
-        &[S, V, V, V, V],
-        Some(Variadic::NameValue),
-        "ShadingContext::trace (environment as a ray)",
-        true,
-    ),
-    ov(B::Shadow, "shadow_fsp_opt", Float, &[S, P], Some(Variadic::NameValue), "ShadingContext shadow ray", true),
-    ov(
-        B::Shadow,
-        "shadow_fspppp_opt",
-        Float,
-        &[S, P, P, P, P],
-        Some(Variadic::NameValue),
-        "ShadingContext shadow ray",
-        true,
-    ),
-    ov(
-        B::Texture,
-        "texture_cs_opt",
-        Color,
-        &[S],
-        Some(Variadic::NameValue),
-        "ShadingContext texture lookup (s, t)",
-        true,
-    ),
-    ov(
-        B::Texture,
-        "texture_csff_opt",
-        Color,
-        &[S, F, F],
-        Some(Variadic::NameValue),
-        "ShadingContext texture lookup (given coordinates)",
-        true,
-    ),
-    ov(
-        B::Texture,
-        "texture_csffffffff_opt",
-        Color,
-        &[S, F, F, F, F, F, F, F, F],
-        Some(Variadic::NameValue),
-        "ShadingContext texture lookup (given coordinates)",
-        true,
-    ),
-    ov(
-        B::Environment,
-        "environment_csv_opt",
-        Color,
-        &[S, V],
-        Some(Variadic::NameValue),
-        "ShadingContext::trace (environment as a ray)",
-        true,
-    ),
-    ov(
-        B::Environment,
-        "environment_csvvvv_opt",
-        Color,
-        &[S, V, V, V, V],
-        Some(Variadic::NameValue),
-        "ShadingContext::trace (environment as a ray)",
-        true,
-    ),
-    ov(B::Shadow, "shadow_csp_opt", Color, &[S, P], Some(Variadic::NameValue), "ShadingContext shadow ray", true),
-    ov(
-        B::Shadow,
-        "shadow_cspppp_opt",
-        Color,
-        &[S, P, P, P, P],
-        Some(Variadic::NameValue),
-        "ShadingContext shadow ray",
-        true,
-    ),
-    ov(B::TextureInfo, "textureinfo_ssX", Float, &[S, S, OUT_ANY], None, "texture metadata", false),
-    ov(
-        B::Atmosphere,
-        "atmosphere_sX",
-        Float,
-        &[S, OUT_ANY],
-        None,
-        "ShadingContext message passing / query (returns 1 when found)",
-        false,
-    ),
-    ov(
-        B::Displacement,
-        "displacement_sX",
-        Float,
-        &[S, OUT_ANY],
-        None,
-        "ShadingContext message passing / query (returns 1 when found)",
-        false,
-    ),
-    ov(
-        B::LightSource,
-        "lightsource_sX",
-        Float,
-        &[S, OUT_ANY],
-        None,
-        "ShadingContext message passing / query (returns 1 when found)",
-        false,
-    ),
-    ov(
-        B::Surface,
-        "surface_sX",
-        Float,
-        &[S, OUT_ANY],
-        None,
-        "ShadingContext message passing / query (returns 1 when found)",
-        false,
-    ),
-    ov(
-        B::Incident,
-        "incident_sX",
-        Float,
-        &[S, OUT_ANY],
-        None,
-        "ShadingContext message passing / query (returns 1 when found)",
-        false,
-    ),
-    ov(
-        B::Opposite,
-        "opposite_sX",
-        Float,
-        &[S, OUT_ANY],
-        None,
-        "ShadingContext message passing / query (returns 1 when found)",
-        false,
-    ),
-    ov(
-        B::Attribute,
-        "attribute_sX",
-        Float,
-        &[S, OUT_ANY],
-        None,
-        "ShadingContext message passing / query (returns 1 when found)",
-        false,
-    ),
-    ov(
-        B::Option,
-        "option_sX",
-        Float,
-        &[S, OUT_ANY],
-        None,
-        "ShadingContext message passing / query (returns 1 when found)",
-        false,
-    ),
-    ov(
-        B::RendererInfo,
-        "rendererinfo_sX",
-        Float,
-        &[S, OUT_ANY],
-        None,
-        "ShadingContext message passing / query (returns 1 when found)",
-        false,
-    ),
-    ov(
-        B::RayInfo,
-        "rayinfo_sX",
-        Float,
-        &[S, OUT_ANY],
-        None,
-        "ray query (returns 1 when known; a camera ray at depth 0 outside a ray tracer)",
-        false,
-    ),
-    ov(B::RayLevel, "raylevel", Float, &[], None, "ray depth (BMRT): 0 for camera rays", false),
-    ov(B::IsShadowRay, "isshadowray", Float, &[], None, "1 for shadow rays (BMRT): 0", false),
-    ov(B::IsIndirectRay, "isindirectray", Float, &[], None, "1 for indirect rays (BMRT): 0", false),
-    ov(
-        B::Occlusion,
-        "occlusion_pnf_opt",
-        Float,
-        &[P, N, F],
-        Some(Variadic::NameValue),
-        "ambient occlusion (PRMan 11+): 0, nothing occludes outside a scene",
-        true,
-    ),
-    ov(
-        B::Occlusion,
-        "occlusion_spnf_opt",
-        Float,
-        &[S, P, N, F],
-        Some(Variadic::NameValue),
-        "ambient occlusion from an occlusion map (PRMan 11 / Aqsis): 0, nothing occludes outside a scene",
-        true,
-    ),
-    ov(
-        B::IndirectDiffuse,
-        "indirectdiffuse_pnf_opt",
-        Color,
-        &[P, N, F],
-        Some(Variadic::NameValue),
-        "indirect diffuse light (PRMan 11+): black outside a scene",
-        true,
-    ),
-    ov(B::Caustic, "caustic_pn", Color, &[P, N], None, "caustic light from photon maps (PRMan): black", true),
-    ov(
-        B::Transmission,
-        "transmission_pp_opt",
-        Color,
-        &[P, P],
-        Some(Variadic::NameValue),
-        "transmission between two points (PRMan 11+): white, nothing blocks outside a scene",
-        true,
-    ),
-    ov(B::ShaderName, "shadername", String, &[], None, "the shader name", false),
-    ov(B::ShaderName, "shadername_s", String, &[S], None, "the name of the shader bound to a slot", false),
-    ov(B::FilterWidth, "filterwidth_f", Float, &[F], None, "stdlib::filterwidth", false),
-    ov(B::FilterWidth, "filterwidth_p", Float, &[P], None, "stdlib::filterwidth_point", false),
-    ov(B::FilteredPulse, "filteredpulse_fff", Float, &[F, F, F], None, "stdlib::filteredpulse", false),
+/// Functions whose operands and result share one type, for float and each triple
+/// (`"letter" Type Param`): `extremum` takes two or more operands (`min_cc_cs`), `triple`
+/// three (`clamp_ccc`).
+macro_rules! same_type {
+    (extremum $b:ident $name:literal $imp:literal) => {
+        same_type!(@extremum $b $name $imp; "f" Float F, "c" Color C, "p" Point P, "v" Vector V, "n" Normal N)
+    };
+    (@extremum $b:ident $name:literal $imp:literal; $($l:literal $t:ident $a:ident),*) => {
+        &[$(
+            ov(B::$b, concat!($name, "_", $l, $l, "_", $l, "s"), $t, &[$a, $a],
+                Some(Variadic::Repeat($t)), $imp, false),
+        )*]
+    };
+    (triple $b:ident $name:literal $imp:literal) => {
+        same_type!(@triple $b $name $imp; "f" Float F, "c" Color C, "p" Point P, "v" Vector V, "n" Normal N)
+    };
+    (@triple $b:ident $name:literal $imp:literal; $($l:literal $t:ident $a:ident),*) => {
+        &[$(ov(B::$b, concat!($name, "_", $l, $l, $l), $t, &[$a, $a, $a], None, $imp, false),)*]
+    };
+}
+
+/// Unary float functions: `name_f`, `float name(float)`; `Builtin name imp` each.
+macro_rules! unary_float {
+    ($($b:ident $name:literal $imp:literal),* $(,)?) => {
+        &[$(ov(B::$b, concat!($name, "_f"), Float, &[F], None, $imp, false),)*]
+    };
+}
+
+/// `mix` of two triples of one type, by a float (`mix_ccf`) or per component (`mix_ccc`).
+macro_rules! mix_triples {
+    ($($l:literal $t:ident $a:ident),*) => {
+        &[$(
+            ov(B::Mix, concat!("mix_", $l, $l, "f"), $t, &[$a, $a, F], None, "stdlib::mix per component", false),
+            ov(B::Mix, concat!("mix_", $l, $l, $l), $t, &[$a, $a, $a], None, "stdlib::mix per component", false),
+        )*]
+    };
+}
+
+/// `spline` of one knot type: catmull-rom or a named basis (`s` first), with four or more
+/// knots (`spline_fccc_cs`) or an array of knots (`spline_fca`).
+macro_rules! spline {
+    ($($l:literal $t:ident $a:ident),*) => {
+        &[$(
+            ov(B::Spline, concat!("spline_f", $l, $l, $l, "_", $l, "s"), $t, &[F, $a, $a, $a],
+                Some(Variadic::Repeat($t)), "stdlib::spline (catmull-rom)", false),
+            ov(B::Spline, concat!("spline_sf", $l, $l, $l, "_", $l, "s"), $t, &[S, F, $a, $a, $a],
+                Some(Variadic::Repeat($t)), "stdlib::spline (SplineBasis::from_name)", false),
+            ov(B::Spline, concat!("spline_f", $l, "a"), $t, &[F, arr($t)],
+                None, "stdlib::spline (catmull-rom, array knots)", false),
+            ov(B::Spline, concat!("spline_sf", $l, "a"), $t, &[S, F, arr($t)],
+                None, "stdlib::spline (SplineBasis::from_name, array knots)", false),
+        )*]
+    };
+}
+
+/// `Du`, `Dv` and `Deriv` of a triple, `"letter" Param Return` each.
+macro_rules! derivatives {
+    ($($l:literal $a:ident $r:ident),*) => {
+        &[$(
+            ov(B::Du, concat!("Du_", $l), $r, &[$a], None, "stdlib::du / du_vec per component", false),
+            ov(B::Dv, concat!("Dv_", $l), $r, &[$a], None, "stdlib::dv / dv_vec per component", false),
+            ov(B::Deriv, concat!("Deriv_", $l, "f"), $r, &[$a, F], None, "stdlib::deriv per component", false),
+        )*]
+    };
+}
+
+/// A noise function over its four domains (`NoiseDomain::D1`…`D4`), each returning float,
+/// color, point or vector (`noise_cp` is `color noise(point)`): `Builtin name float-imp
+/// color-imp triple-imp`. `periodic` takes a period after each domain argument.
+macro_rules! noise {
+    ($b:ident $name:literal $f:literal $c:literal $v:literal) => {
+        noise!(@ $b $name $f $c $v; D1 "f" [F], D2 "ff" [F, F], D3 "p" [P], D4 "pf" [P, F])
+    };
+    (periodic $b:ident $name:literal $f:literal $c:literal $v:literal) => {
+        noise!(@ $b $name $f $c $v; D1 "ff" [F, F], D2 "ffff" [F, F, F, F], D3 "pp" [P, P], D4 "pfpf" [P, F, P, F])
+    };
+    (@ $b:ident $name:literal $f:literal $c:literal $v:literal; $($d:ident $k:literal [$($a:ident),*]),*) => {
+        &[$(
+            ov(B::$b, concat!($name, "_f", $k), Float, &[$($a),*], None,
+                concat!($f, " (NoiseDomain::", stringify!($d), ")"), false),
+            ov(B::$b, concat!($name, "_c", $k), Color, &[$($a),*], None,
+                concat!($c, " (NoiseDomain::", stringify!($d), ")"), false),
+            ov(B::$b, concat!($name, "_p", $k), Point, &[$($a),*], None,
+                concat!($v, " (NoiseDomain::", stringify!($d), ")"), false),
+            ov(B::$b, concat!($name, "_v", $k), Vector, &[$($a),*], None,
+                concat!($v, " (NoiseDomain::", stringify!($d), ")"), false),
+        )*]
+    };
+}
+
+/// `fbm`/`turbulence` over the domains D1, D3 and D4, then octaves, lacunarity and gain.
+macro_rules! fractal {
+    ($b:ident $name:literal) => {
+        fractal!(@ $b $name; D1 "f" [F], D3 "p" [P], D4 "pf" [P, F])
+    };
+    (@ $b:ident $name:literal; $($d:ident $k:literal [$($a:ident),*]),*) => {
+        &[$(ov(B::$b, concat!($name, "_", $k, "fff"), Float, &[$($a,)* F, F, F], None,
+            concat!("stdlib::", $name, " (NoiseDomain::", stringify!($d), "; octaves rounded, uniform)"), false),)*]
+    };
+}
+
+/// `xcomp`/`ycomp`/`zcomp` and their setters on the point-like types: `"letter" "OUTPUT"
+/// Param Type` each.
+macro_rules! xyz {
+    (get $($l:literal $a:ident),*) => {
+        &[$(
+            ov(B::XComp, concat!("xcomp_", $l), Float, &[$a], None, "Vec3::x", false),
+            ov(B::YComp, concat!("ycomp_", $l), Float, &[$a], None, "Vec3::y", false),
+            ov(B::ZComp, concat!("zcomp_", $l), Float, &[$a], None, "Vec3::z", false),
+        )*]
+    };
+    (set $($l:literal $t:ident),*) => {
+        &[$(
+            ov(B::SetXComp, concat!("setxcomp_", $l, "f"), Void, &[out($t), F], None, "Vec3::x =", false),
+            ov(B::SetYComp, concat!("setycomp_", $l, "f"), Void, &[out($t), F], None, "Vec3::y =", false),
+            ov(B::SetZComp, concat!("setzcomp_", $l, "f"), Void, &[out($t), F], None, "Vec3::z =", false),
+        )*]
+    };
+}
+
+/// `comp`/`setcomp` of a triple by index: `"letter" "OUTPUT" Param Type` each.
+macro_rules! comp {
+    ($($l:literal $o:literal $a:ident $t:ident),*) => {
+        &[$(
+            ov(B::Comp, concat!("comp_", $l, "f"), Float, &[$a, F], None, "component by index (clamped)", false),
+            ov(B::SetComp, concat!("setcomp_", $o, "ff"), Void, &[out($t), F, F], None,
+                "component by index (clamped) =", false),
+        )*]
+    };
+}
+
+/// A transform of one point-like type: from a named space (`_sp`), between two (`_ssp`), by a
+/// matrix (`_mp`) or by a matrix into a named space (`_smp`): `Builtin name "letter" Type
+/// Param "point|vector|normal"`.
+macro_rules! transform {
+    ($b:ident $name:literal $l:literal $t:ident $a:ident $kind:literal) => {
+        transform!(@ $b $name $l $t $a $kind;
+            "s" [S] "ShadingContext space matrix, ",
+            "ss" [S, S] "ShadingContext space matrices, ",
+            "m" [M] "",
+            "sm" [S, M] "ShadingContext space matrix, ")
+    };
+    (@ $b:ident $name:literal $l:literal $t:ident $a:ident $kind:literal;
+        $($k:literal [$($from:ident),*] $how:literal),*) => {
+        &[$(ov(B::$b, concat!($name, "_", $k, $l), $t, &[$($from,)* $a], None,
+            concat!($how, "Matrix4::transform_", $kind), false),)*]
+    };
+}
+
+/// `texture`, `environment` and `shadow` returning one type (`"letter" Type`), with `"name",
+/// value` options: texture at (s, t), at given coordinates or four corners; environment and
+/// shadow along one direction / at one point or four.
+macro_rules! lookups {
+    ($l:literal $t:ident) => {
+        lookups!(@ $l $t;
+            Texture "texture" "s" [S] "ShadingContext texture lookup (s, t)",
+            Texture "texture" "sff" [S, F, F] "ShadingContext texture lookup (given coordinates)",
+            Texture "texture" "sffffffff" [S, F, F, F, F, F, F, F, F]
+                "ShadingContext texture lookup (given coordinates)",
+            Environment "environment" "sv" [S, V] "ShadingContext::trace (environment as a ray)",
+            Environment "environment" "svvvv" [S, V, V, V, V] "ShadingContext::trace (environment as a ray)",
+            Shadow "shadow" "sp" [S, P] "ShadingContext shadow ray",
+            Shadow "shadow" "spppp" [S, P, P, P, P] "ShadingContext shadow ray")
+    };
+    (@ $l:literal $t:ident; $($b:ident $name:literal $k:literal [$($a:ident),*] $imp:literal),*) => {
+        &[$(ov(B::$b, concat!($name, "_", $l, $k, "_opt"), $t, &[$($a),*], Some(Variadic::NameValue), $imp, true),)*]
+    };
+}
+
+/// The message-passing and query functions, `name_sX`: `float name(string, output any)`.
+macro_rules! queries {
+    ($($b:ident $name:literal),* $(,)?) => {
+        &[$(ov(B::$b, concat!($name, "_sX"), Float, &[S, OUT_ANY], None,
+            "ShadingContext message passing / query (returns 1 when found)", false),)*]
+    };
+}
+
+/// The rows of the groups, in order (the table is written as groups, some made by the family
+/// macros above; an IR call stores a row's index, so the order is part of the IR).
+const OVERLOAD_GROUPS: &[&[Overload]] = &[
+    unary_float!(
+        Radians "radians" "stdlib::radians",
+        Degrees "degrees" "stdlib::degrees",
+        Sin "sin" "F::sin",
+        Asin "asin" "F::asin",
+        Cos "cos" "F::cos",
+        Acos "acos" "F::acos",
+        Tan "tan" "F::tan",
+        Exp "exp" "F::exp",
+        Sqrt "sqrt" "F::sqrt",
+        InverseSqrt "inversesqrt" "stdlib::inversesqrt",
+        Abs "abs" "F::abs",
+        Sign "sign" "stdlib::sign",
+        Floor "floor" "F::floor",
+        Ceil "ceil" "F::ceil",
+        Round "round" "F::round",
+    ),
+    &[
+        ov(B::Atan, "atan_f", Float, &[F], None, "F::atan", false),
+        ov(B::Atan, "atan_ff", Float, &[F, F], None, "F::atan2", false),
+        ov(B::Pow, "pow_ff", Float, &[F, F], None, "F::powf", false),
+        ov(B::Log, "log_f", Float, &[F], None, "F::ln", false),
+        ov(B::Log, "log_ff", Float, &[F, F], None, "stdlib::log_base", false),
+        ov(B::Mod, "mod_ff", Float, &[F, F], None, "stdlib::fmod", false),
+    ],
+    same_type!(extremum Min "min" "F::min per component"),
+    same_type!(extremum Max "max" "F::max per component"),
+    same_type!(triple Clamp "clamp" "stdlib::clamp per component"),
+    &[ov(B::Mix, "mix_fff", Float, &[F, F, F], None, "stdlib::mix", false)],
+    mix_triples!("c" Color C, "p" Point P, "v" Vector V, "n" Normal N),
+    &[
+        ov(B::Step, "step_ff", Float, &[F, F], None, "stdlib::step", false),
+        ov(B::SmoothStep, "smoothstep_fff", Float, &[F, F, F], None, "stdlib::smoothstep", false),
+        ov(B::FilterStep, "filterstep_ff_opt", Float, &[F, F], Some(Variadic::NameValue), "stdlib::filterstep", false),
+        ov(
+            B::FilterStep,
+            "filterstep_fff_opt",
+            Float,
+            &[F, F, F],
+            Some(Variadic::NameValue),
+            "stdlib::filterstep (s1, s2 form: width |s2 - s1|)",
+            false,
+        ),
+    ],
+    spline!("f" Float F, "c" Color C, "p" Point P, "v" Vector V, "n" Normal N),
+    &[
+        ov(B::Du, "Du_f", Float, &[F], None, "stdlib::du", false),
+        ov(B::Dv, "Dv_f", Float, &[F], None, "stdlib::dv", false),
+        ov(B::Deriv, "Deriv_ff", Float, &[F, F], None, "stdlib::deriv", false),
+    ],
+    derivatives!("c" C Color, "p" P Vector, "v" V Vector, "n" N Vector),
+    noise!(Noise "noise" "stdlib::noise" "stdlib::cnoise" "stdlib::vnoise"),
+    noise!(CellNoise "cellnoise" "stdlib::cellnoise" "stdlib::vcellnoise" "stdlib::vcellnoise"),
+    noise!(SNoise "snoise" "stdlib::snoise" "stdlib::vsnoise" "stdlib::vsnoise"),
+    noise!(periodic PNoise "pnoise" "stdlib::pnoise" "stdlib::vpnoise" "stdlib::vpnoise"),
+    noise!(periodic PSNoise "psnoise" "stdlib::psnoise"
+        "stdlib::vpnoise, remapped to [-1, 1]" "stdlib::vpnoise, remapped to [-1, 1]"),
+    &[
+        ov(B::Random, "random_f", Float, &[], None, "ShadingContext random stream", true),
+        ov(B::Random, "random_c", Color, &[], None, "ShadingContext random stream", true),
+        ov(B::Random, "random_p", Point, &[], None, "ShadingContext random stream", true),
+        ov(B::Random, "random_v", Vector, &[], None, "ShadingContext random stream", true),
+    ],
+    fractal!(Fbm "fbm"),
+    fractal!(Turbulence "turbulence"),
+    xyz!(get "p" P, "v" V, "n" N),
+    xyz!(set "P" Point, "V" Vector, "N" Normal),
+    comp!("c" "C" C Color, "p" "P" P Point, "v" "V" V Vector, "n" "N" N Normal),
+    &[
+        ov(B::Comp, "comp_mff", Float, &[M, F, F], None, "Matrix4 element [row][col]", false),
+        ov(B::SetComp, "setcomp_Mfff", Void, &[out(Matrix), F, F, F], None, "Matrix4 element [row][col] =", false),
+        ov(B::Length, "length_p", Float, &[P], None, "Vec3::length", false),
+        ov(B::Length, "length_v", Float, &[V], None, "Vec3::length", false),
+        ov(B::Length, "length_n", Float, &[N], None, "Vec3::length", false),
+        ov(B::Normalize, "normalize_v", Vector, &[V], None, "Vec3::normalize", false),
+        ov(B::Normalize, "normalize_p", Vector, &[P], None, "Vec3::normalize", false),
+        ov(B::Normalize, "normalize_n", Normal, &[N], None, "Vec3::normalize", false),
+        ov(B::Distance, "distance_pp", Float, &[P, P], None, "stdlib::distance", false),
+        ov(B::PtLineD, "ptlined_ppp", Float, &[P, P, P], None, "stdlib::ptlined", false),
+        ov(B::Rotate, "rotate_pfpp", Point, &[P, F, P, P], None, "stdlib::rotate", false),
+        ov(B::Area, "area_p", Float, &[P], None, "stdlib::area", false),
+        ov(B::FaceForward, "faceforward_vv", Vector, &[V, V], None, "stdlib::faceforward with Nref = Ng", false),
+        ov(B::FaceForward, "faceforward_vvv", Vector, &[V, V, V], None, "stdlib::faceforward", false),
+        ov(B::Reflect, "reflect_vv", Vector, &[V, V], None, "stdlib::reflect", false),
+        ov(B::Refract, "refract_vvf", Vector, &[V, V, F], None, "stdlib::refract", false),
+        ov(
+            B::Fresnel,
+            "fresnel_vvfFF",
+            Void,
+            &[V, V, F, out(Float), out(Float)],
+            None,
+            "stdlib::fresnel (kr, kt)",
+            false,
+        ),
+        ov(
+            B::Fresnel,
+            "fresnel_vvfFFVV",
+            Void,
+            &[V, V, F, out(Float), out(Float), out(Vector), out(Vector)],
+            None,
+            "stdlib::fresnel (kr, kt, R, T)",
+            false,
+        ),
+    ],
+    transform!(Transform "transform" "p" Point P "point"),
+    transform!(VTransform "vtransform" "v" Vector V "vector"),
+    transform!(NTransform "ntransform" "n" Normal N "normal"),
+    transform!(Transform "transform" "v" Vector V "vector"),
+    transform!(Transform "transform" "n" Normal N "normal"),
+    &[
+        ov(
+            B::Depth,
+            "depth_p",
+            Float,
+            &[P],
+            None,
+            "ShadingContext camera depth (normalized by the clipping planes)",
+            false,
+        ),
+        ov(B::CalculateNormal, "calculatenormal_p", Normal, &[P], None, "stdlib::calculatenormal", false),
+        ov(B::CTransform, "ctransform_sc", Color, &[S, C], None, "stdlib::from_rgb", false),
+        ov(B::CTransform, "ctransform_ssc", Color, &[S, S, C], None, "stdlib::ctransform", false),
+        ov(B::Determinant, "determinant_m", Float, &[M], None, "Matrix4::determinant", false),
+        ov(B::Translate, "translate_mv", Matrix, &[M, V], None, "Matrix4::translate", false),
+        ov(B::Rotate, "rotate_mfv", Matrix, &[M, F, V], None, "Matrix4::rotate", false),
+        ov(B::Scale, "scale_mp", Matrix, &[M, P], None, "Matrix4::scale", false),
+        ov(
+            B::Concat,
+            "concat_s_ss",
+            String,
+            &[S],
+            Some(Variadic::Repeat(String)),
+            "String concatenation (uniform)",
+            false,
+        ),
+        ov(B::Printf, "printf_s_etc", Void, &[S], Some(Variadic::Any), "formatted print (side effect)", false),
+        ov(B::Format, "format_s_etc", String, &[S], Some(Variadic::Any), "formatted string", false),
+        ov(B::Match, "match_ss", Float, &[S, S], None, "regex match", false),
+        ov(B::Ambient, "ambient", Color, &[], None, "stdlib::ambient", true),
+        ov(B::Diffuse, "diffuse_n", Color, &[N], None, "stdlib::diffuse", true),
+        ov(B::Specular, "specular_nvf", Color, &[N, V, F], None, "stdlib::specular", true),
+        ov(B::SpecularBrdf, "specularbrdf_vnvf", Color, &[V, N, V, F], None, "stdlib::specularbrdf (times Cl)", true),
+        ov(B::Phong, "phong_nvf", Color, &[N, V, F], None, "stdlib::phong", true),
+        ov(B::Trace, "trace_pv", Color, &[P, V], None, "ShadingContext::trace", true),
+    ],
+    lookups!("f" Float),
+    lookups!("c" Color),
+    &[ov(B::TextureInfo, "textureinfo_ssX", Float, &[S, S, OUT_ANY], None, "texture metadata", false)],
+    queries!(
+        Atmosphere "atmosphere",
+        Displacement "displacement",
+        LightSource "lightsource",
+        Surface "surface",
+        Incident "incident",
+        Opposite "opposite",
+        Attribute "attribute",
+        Option "option",
+        RendererInfo "rendererinfo",
+    ),
+    &[
+        ov(
+            B::RayInfo,
+            "rayinfo_sX",
+            Float,
+            &[S, OUT_ANY],
+            None,
+            "ray query (returns 1 when known; a camera ray at depth 0 outside a ray tracer)",
+            false,
+        ),
+        ov(B::RayLevel, "raylevel", Float, &[], None, "ray depth (BMRT): 0 for camera rays", false),
+        ov(B::IsShadowRay, "isshadowray", Float, &[], None, "1 for shadow rays (BMRT): 0", false),
+        ov(B::IsIndirectRay, "isindirectray", Float, &[], None, "1 for indirect rays (BMRT): 0", false),
+        ov(
+            B::Occlusion,
+            "occlusion_pnf_opt",
+            Float,
+            &[P, N, F],
+            Some(Variadic::NameValue),
+            "ambient occlusion (PRMan 11+): 0, nothing occludes outside a scene",
+            true,
+        ),
+        ov(
+            B::Occlusion,
+            "occlusion_spnf_opt",
+            Float,
+            &[S, P, N, F],
+            Some(Variadic::NameValue),
+            "ambient occlusion from an occlusion map (PRMan 11 / Aqsis): 0, nothing occludes outside a scene",
+            true,
+        ),
+        ov(
+            B::IndirectDiffuse,
+            "indirectdiffuse_pnf_opt",
+            Color,
+            &[P, N, F],
+            Some(Variadic::NameValue),
+            "indirect diffuse light (PRMan 11+): black outside a scene",
+            true,
+        ),
+        ov(B::Caustic, "caustic_pn", Color, &[P, N], None, "caustic light from photon maps (PRMan): black", true),
+        ov(
+            B::Transmission,
+            "transmission_pp_opt",
+            Color,
+            &[P, P],
+            Some(Variadic::NameValue),
+            "transmission between two points (PRMan 11+): white, nothing blocks outside a scene",
+            true,
+        ),
+        ov(B::ShaderName, "shadername", String, &[], None, "the shader name", false),
+        ov(B::ShaderName, "shadername_s", String, &[S], None, "the name of the shader bound to a slot", false),
+        ov(B::FilterWidth, "filterwidth_f", Float, &[F], None, "stdlib::filterwidth", false),
+        ov(B::FilterWidth, "filterwidth_p", Float, &[P], None, "stdlib::filterwidth_point", false),
+        ov(B::FilteredPulse, "filteredpulse_fff", Float, &[F, F, F], None, "stdlib::filteredpulse", false),
+    ],
 ];
+
+/// The number of rows in `groups`.
+const fn row_count(groups: &[&[Overload]]) -> usize {
+    let (mut n, mut g) = (0, 0);
+    while g < groups.len() {
+        n += groups[g].len();
+        g += 1;
+    }
+    n
+}
+
+/// The rows of `groups` in order, as one array of their `N` rows.
+const fn concat_rows<const N: usize>(groups: &[&[Overload]]) -> [Overload; N] {
+    let mut rows = [groups[0][0]; N];
+    let (mut n, mut g) = (0, 0);
+    while g < groups.len() {
+        let mut i = 0;
+        while i < groups[g].len() {
+            rows[n] = groups[g][i];
+            n += 1;
+            i += 1;
+        }
+        g += 1;
+    }
+    rows
+}
+
+static OVERLOAD_ROWS: [Overload; row_count(OVERLOAD_GROUPS)] = concat_rows(OVERLOAD_GROUPS);
+
+/// Every overload of every built-in, grouped by function.
+pub static OVERLOADS: &[Overload] = &OVERLOAD_ROWS;
 
 /// Why [`resolve`] found no overload.
 #[derive(Clone, Debug, PartialEq, Eq)]
