@@ -1,0 +1,140 @@
+//! Unit tests of the runtime: the host context's layout, the spline bases, and the copies
+//! compiled for one selector against the general functions, the inlined noise against the
+//! library's.
+
+use super::spline::BASES;
+use super::*;
+
+/// The compiled code reads the lights at fixed offsets of `HostCtx` and each light's
+/// fields at the offsets of `LightData` (taken from the type itself).
+#[test]
+fn host_ctx_lights_are_where_the_compiled_code_reads_them() {
+    use core::mem::offset_of;
+    type H = HostCtx<'static, anysl_simd::F32x8, ()>;
+    assert_eq!(offset_of!(H, lights) as u64, HOST_CTX_LIGHTS);
+    assert_eq!(offset_of!(H, n_lights) as u64, HOST_CTX_N_LIGHTS);
+    type H1 = HostCtx<'static, f32, ()>;
+    assert_eq!(offset_of!(H1, lights) as u64, HOST_CTX_LIGHTS);
+    assert_eq!(offset_of!(H1, n_lights) as u64, HOST_CTX_N_LIGHTS);
+}
+
+#[test]
+fn spline_bases_by_index_are_the_named_ones() {
+    for (i, name) in SPLINE_BASES.iter().enumerate() {
+        assert_eq!(Some(BASES[i]), SplineBasis::from_name(name), "{name}");
+    }
+}
+
+#[test]
+fn specialized_runtime_functions_compute_what_the_general_ones_do() {
+    // Every specialized (kind, aux) against the general function on the same input, for
+    // 8 lanes (the copies exist for 8 and 16 lanes without derivatives).
+    type X = anysl_simd::F32x8;
+    let n = X::STRIDE;
+    let inp: Vec<f32> = (0..64 * n).map(|k| 0.37 + 0.61 * (k / n) as f32 + 0.001 * (k % n) as f32).collect();
+    let mut cases: Vec<(RtKind, u32)> = Vec::new();
+    cases.extend(Un::ALL.iter().map(|&a| (RtKind::Un, a as u32)));
+    cases.extend(Bin::ALL.iter().map(|&a| (RtKind::Bin, a as u32)));
+    cases.extend(Geo::ALL.iter().filter(|&&a| a != Geo::CTransform).map(|&a| (RtKind::Geo, a as u32)));
+    for kind in [NoiseOp::Noise, NoiseOp::SNoise, NoiseOp::Cell, NoiseOp::PNoise, NoiseOp::PSNoise] {
+        for dims in 1..=4 {
+            for out in [1, 3] {
+                cases.push((RtKind::Noise, NoiseSel { kind, dims, out, extra: 0 }.encode()));
+            }
+        }
+    }
+    for kind in [NoiseOp::Fbm, NoiseOp::Turbulence] {
+        for dims in [1, 3] {
+            cases.push((RtKind::Noise, NoiseSel { kind, dims, out: 1, extra: 2 }.encode()));
+        }
+    }
+    for b in 0..6 {
+        for w in [1, 3] {
+            cases.push((RtKind::Spline, 5 | b << 8 | w << 16));
+        }
+    }
+    let mut specialized = 0;
+    for (kind, aux) in cases {
+        // Other types have no copies: every call gets the general function.
+        assert_eq!(rt_addr::<f32>(kind, aux), rt_table::<f32>()[kind as usize] as usize);
+        assert_eq!(rt_addr::<anysl_ad::Dual<X>>(kind, aux), rt_table::<anysl_ad::Dual<X>>()[kind as usize] as usize);
+        let general = rt_table::<X>()[kind as usize];
+        let addr = rt_addr::<X>(kind, aux);
+        if addr != general as usize {
+            specialized += 1;
+        }
+        // SAFETY: `addr` is an `RtFn` (it comes from `rt_addr`).
+        let f: RtFn = unsafe { core::mem::transmute::<usize, RtFn>(addr) };
+        let (mut a, mut b) = (vec![0f32; 16 * n], vec![0f32; 16 * n]);
+        unsafe {
+            general(core::ptr::null_mut(), core::ptr::null(), inp.as_ptr(), a.as_mut_ptr(), aux);
+            f(core::ptr::null_mut(), core::ptr::null(), inp.as_ptr(), b.as_mut_ptr(), aux);
+        }
+        let bits = |v: &[f32]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        assert_eq!(bits(&a), bits(&b), "{kind:?} aux {aux:#x}");
+    }
+    assert!(specialized > 100, "only {specialized} calls have their own function");
+    // A call without a specialized copy gets the general function.
+    assert_eq!(
+        rt_addr::<X>(RtKind::Geo, Geo::CTransform as u32 | 1 << 8),
+        rt_table::<X>()[RtKind::Geo as usize] as usize
+    );
+}
+
+/// The runtime noise, whose kernel is inlined for types without derivatives, gives the
+/// library's noise bit for bit (f32 and 8 lanes; 1–3 dimensions; float and vector;
+/// fBm and turbulence), including non-finite and huge coordinates.
+#[test]
+fn inlined_runtime_noise_is_the_library_noise() {
+    fn run<F: JitFloat>(aux: u32, args: &[F], outs: usize) -> Vec<F> {
+        let mut inp = vec![0f32; 8 * F::STRIDE];
+        for (k, a) in args.iter().enumerate() {
+            unsafe { a.write(inp.as_mut_ptr().add(k * F::STRIDE)) };
+        }
+        let mut out = vec![0f32; 3 * F::STRIDE];
+        let f: RtFn = unsafe { core::mem::transmute::<usize, RtFn>(rt_addr::<F>(RtKind::Noise, aux)) };
+        unsafe { f(core::ptr::null_mut(), core::ptr::null(), inp.as_ptr(), out.as_mut_ptr(), aux) };
+        (0..outs).map(|k| unsafe { F::read(out.as_ptr().add(k * F::STRIDE)) }).collect()
+    }
+    fn bits<F: ShadingFloat>(v: &[F]) -> Vec<u64> {
+        v.iter().flat_map(|x| (0..F::LANES).map(|l| x.lane(l).to_bits())).collect()
+    }
+    fn check<F: JitFloat>(x: F, y: F, z: F) {
+        let p = Vec3::new(x, y, z);
+        let doms = [NoiseDomain::D1(x), NoiseDomain::D2(x, y), NoiseDomain::D3(p)];
+        for (k, d) in doms.into_iter().enumerate() {
+            let dims = k as u32 + 1;
+            let args = [x, y, z];
+            let a = &args[..k + 1];
+            let sel = |kind: NoiseOp, out: u32| NoiseSel { kind, dims, out, extra: 0 }.encode();
+            let v3 = |v: Vec3<F>| vec![v.x, v.y, v.z];
+            let cases: [(u32, Vec<F>, Vec<F>); 4] = [
+                (sel(NoiseOp::SNoise, 1), run(sel(NoiseOp::SNoise, 1), a, 1), vec![snoise(d)]),
+                (sel(NoiseOp::Noise, 1), run(sel(NoiseOp::Noise, 1), a, 1), vec![anysl_core::prelude::noise(d)]),
+                (sel(NoiseOp::SNoise, 3), run(sel(NoiseOp::SNoise, 3), a, 3), v3(vsnoise(d))),
+                (sel(NoiseOp::Noise, 3), run(sel(NoiseOp::Noise, 3), a, 3), v3(vnoise(d))),
+            ];
+            for (aux, got, want) in cases {
+                assert_eq!(bits(&got), bits(&want), "{} aux {aux:#x}", F::NAME);
+            }
+            let mut with_opts = a.to_vec();
+            with_opts.extend([F::c(4.0), F::c(2.5), F::c(0.375)]);
+            for (kind, want) in
+                [(NoiseOp::Fbm, fbm(d, 4, 2.5, 0.375)), (NoiseOp::Turbulence, turbulence(d, 4, 2.5, 0.375))]
+            {
+                let aux = NoiseSel { kind, dims, out: 1, extra: 3 }.encode();
+                assert_eq!(bits(&run(aux, &with_opts, 1)), bits(&[want]), "{} aux {aux:#x}", F::NAME);
+            }
+        }
+    }
+    let vals = [0.37f32, -5.25, 1.0e7, -3.0e-39, 12.5, f32::NAN, f32::INFINITY, 0.0];
+    for (i, &x) in vals.iter().enumerate() {
+        let (y, z) = (vals[(i + 3) % vals.len()], vals[(i + 5) % vals.len()]);
+        check::<f32>(x, y * 0.7 + 0.1, z * 1.3 - 0.2);
+    }
+    let lanes = |o: usize| {
+        let l: Vec<f64> = (0..8).map(|l| f64::from(vals[(l + o) % vals.len()] * (1.0 + 0.1 * o as f32))).collect();
+        anysl_simd::F32x8::from_lanes(&l)
+    };
+    check::<anysl_simd::F32x8>(lanes(0), lanes(3), lanes(5));
+}
