@@ -23,6 +23,8 @@
 pub mod context;
 pub mod exec;
 pub mod float;
+pub mod globals;
+pub mod light;
 pub mod points;
 pub mod prelude;
 pub mod shader;
@@ -30,13 +32,14 @@ pub mod spaces;
 pub mod stdlib;
 pub mod vec;
 
-pub use context::{
-    illuminate, in_cone, run_illuminance, solar, sum_ambient, ConeTest, Emission, Erased, ErasedContext, Falloff,
-    GlobalSet, Globals, LightData, LightKind, LightOutput, LightQuery, LightSource, PointContext, ShadingContext,
-    SurfaceOutput, MAX_DATA_LIGHTS,
-};
+pub use context::{Erased, ErasedContext, PointContext, ShadingContext, MAX_DATA_LIGHTS};
 pub use exec::{Exec, INTERVAL_LOOP_LIMIT};
 pub use float::{rsqrt_f32, Blend, LatticeBits, Mask, PureFn, ShadingFloat, RSQRT_ESTIMATE_14};
+pub use globals::{GlobalSet, Globals, SurfaceOutput};
+pub use light::{
+    illuminate, in_cone, run_illuminance, solar, sum_ambient, ConeTest, Emission, Falloff, LightData, LightKind,
+    LightOutput, LightQuery, LightSource,
+};
 pub use shader::{
     DisplacementShader, LightShader, ParamError, ParamField, ParamInfo, ParamType, ParamValue, Shader, ShaderKind,
     ShaderMeta, Storage, SurfaceShader, SurfaceVisitor,

@@ -6,9 +6,10 @@
 //! each point carries screen-space derivative seeds (a pixel footprint of about 1/256 of the
 //! sphere) that dual-number instantiations pick up and all others ignore.
 
-use crate::context::{GlobalSet, Globals, PointContext};
+use crate::context::PointContext;
 use crate::exec::Exec;
 use crate::float::ShadingFloat;
+use crate::globals::{GlobalSet, Globals};
 use crate::shader::{LightShader, SurfaceShader, SurfaceVisitor};
 use crate::vec::{Color, Vec3};
 

@@ -1,9 +1,11 @@
 //! Shader traits and parameter metadata (name, type, default, uniform/varying, output), with
 //! setting parameters by name — the same for shaders written in Rust and loaded from `.sl`.
 
-use crate::context::{Emission, LightData, LightOutput, ShadingContext, SurfaceOutput};
+use crate::context::ShadingContext;
 use crate::exec::Exec;
 use crate::float::ShadingFloat;
+use crate::globals::SurfaceOutput;
+use crate::light::{Emission, LightData, LightOutput, LightSource};
 use crate::vec::Vec3;
 use core::fmt;
 
@@ -329,8 +331,8 @@ pub trait SurfaceShader: Shader {
     /// holding any finite values. The default, every global, is always right; a shader that
     /// knows better (a compiled `.sl` shader from its IR) saves the renderer work.
     #[inline(always)]
-    fn globals_read(&self) -> crate::context::GlobalSet {
-        crate::context::GlobalSet::ALL
+    fn globals_read(&self) -> crate::globals::GlobalSet {
+        crate::globals::GlobalSet::ALL
     }
 
     /// Runs `v` on the concrete shader. A closed set of shaders (an enum dispatching by
@@ -521,4 +523,24 @@ macro_rules! shader_params {
             }
         }
     };
+}
+
+/// Every light shader is a [`LightSource`] for the shared light loops.
+impl<T: LightShader> LightSource for T {
+    #[inline(always)]
+    fn source_emission(&self) -> Option<Emission> {
+        self.emission()
+    }
+    #[inline(always)]
+    fn source_category(&self) -> &str {
+        self.category()
+    }
+    #[inline(always)]
+    fn evaluate<F: ShadingFloat>(&self, e: &mut Exec<F>, ps: Vec3<F>) -> LightOutput<F> {
+        self.light(e, ps)
+    }
+    #[inline(always)]
+    fn source_data(&self) -> Option<LightData> {
+        self.data()
+    }
 }

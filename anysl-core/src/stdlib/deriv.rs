@@ -9,8 +9,8 @@
 //! derivatives, a degenerate parameterization) the result is 0, never NaN.
 
 use super::math::{clamp, step};
-use crate::context::Globals;
 use crate::float::ShadingFloat;
+use crate::globals::Globals;
 use crate::vec::Vec3;
 
 /// Inverse-Jacobian weights `(a, b, c, d)` with `∂/∂u = a·∂/∂x + b·∂/∂y`,

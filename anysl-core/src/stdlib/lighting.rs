@@ -1,9 +1,10 @@
 //! Built-in illumination functions over the [`ShadingContext`]: RSL `ambient`, `diffuse`,
 //! `specular`, `phong` and `specularbrdf`. Each is an `illuminance` loop written once.
 
-use crate::context::{LightQuery, ShadingContext};
+use crate::context::ShadingContext;
 use crate::exec::Exec;
 use crate::float::ShadingFloat;
+use crate::light::LightQuery;
 use crate::vec::{Color, Vec3};
 
 /// RSL `ambient()`.
