@@ -44,6 +44,7 @@
 
 #![warn(missing_docs)]
 
+mod args;
 mod builder;
 mod diag;
 mod lex;

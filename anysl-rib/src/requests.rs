@@ -5,9 +5,9 @@
 // The RIB requests have as many arguments as the RenderMan Interface gives them.
 #![allow(clippy::too_many_arguments)]
 
+use crate::args::{Args, Bad};
 use crate::builder::{Basis, BorrowArg, BuildError, Handle, Matrix, OwnArg};
 use crate::param::ParamList;
-use crate::read::{Args, Bad};
 use crate::source::Loc;
 use std::path::PathBuf;
 
