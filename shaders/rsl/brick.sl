@@ -4,8 +4,10 @@
  * Bricks of brickwidth × brickheight separated by mortar joints of mortarthickness,
  * every other row shifted by rowvary brick lengths; the joints are box-filtered with
  * filterstep and each brick's colour varies by ±brickvary/2 with the cellnoise of its
- * index. Matte lighting: Ci = Os·Ct·(Ka·ambient() + Kd·diffuse(Nf)), Oi = Os.
+ * index. Matte lighting (anysl_matte): Ci = Os·Ct·(Ka·ambient() + Kd·diffuse(Nf)), Oi = Os.
  */
+#include "anysl.h"
+
 surface brick(
     uniform float Ka = 1;
     uniform float Kd = 1;
@@ -42,5 +44,5 @@ surface brick(
 
     color Ct = Cmortar + (cbrick - Cmortar) * inbrick;
     Oi = Os;
-    Ci = Os * (Ct * (Ka * ambient() + Kd * diffuse(Nf)));
+    Ci = Os * anysl_matte(Nf, Ct, Ka, Kd);
 }

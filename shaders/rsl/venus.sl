@@ -5,8 +5,10 @@
  * Coriolis shear strongest at the equator); then a = Σ omega^o·snoise(2^o·PP) over
  * `octaves` octaves, value = |offset + scale·a|, and the colour is a Catmull-Rom
  * spline of value/2 through a haze-to-cloud palette (first and last knots repeated).
- * Matte lighting: Ci = Os·(Ka·ambient() + Kd·diffuse(Nf))·Ct, Oi = Os.
+ * Matte lighting (anysl_matte): Ci = Os·Ct·(Ka·ambient() + Kd·diffuse(Nf)), Oi = Os.
  */
+#include "anysl.h"
+
 surface venus(
     uniform float Ka = 1;
     uniform float Kd = 1;
@@ -49,5 +51,5 @@ surface venus(
                       color (1.00, 0.96, 0.84));
 
     Oi = Os;
-    Ci = Os * (Ka * ambient() + Kd * diffuse(Nf)) * Ct;
+    Ci = Os * anysl_matte(Nf, Ct, Ka, Kd);
 }

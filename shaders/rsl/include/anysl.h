@@ -23,19 +23,37 @@ float anysl_filtered_square(float x)
 }
 
 /*
+ * The matte part of the illumination models (common.rs `Finish::matte_part`):
+ *   Ct·(Ka·ambient() + Kd·diffuse(Nf)), not yet multiplied by Os.
+ */
+color anysl_matte(normal Nf; color Ct; uniform float Ka, Kd)
+{
+    return Ct * (Ka * ambient() + Kd * diffuse(Nf));
+}
+
+/*
+ * The specular part (common.rs `Finish::specular_part`):
+ *   specularcolor·Ks·specular(Nf, V, roughness). Ks is uniform: with Ks == 0 the specular
+ * light loop is skipped (a branch on a parameter, not on a point).
+ */
+color anysl_specular(normal Nf; vector V; uniform float Ks, roughness; uniform color specularcolor)
+{
+    color spec = 0;
+    if (Ks != 0)
+        spec = specular(Nf, V, roughness);
+    return specularcolor * Ks * spec;
+}
+
+/*
  * The plastic illumination model (common.rs `Finish::plastic`):
  *   Ct·(Ka·ambient() + Kd·diffuse(Nf)) + specularcolor·Ks·specular(Nf, V, roughness),
- * not yet multiplied by Os. Ks is uniform: with Ks == 0 the specular light loop is
- * skipped (a branch on a parameter, not on a point).
+ * not yet multiplied by Os: the matte part plus the specular part.
  */
 color anysl_plastic(normal Nf; vector V; color Ct;
                     uniform float Ka, Kd, Ks, roughness;
                     uniform color specularcolor)
 {
-    color spec = 0;
-    if (Ks != 0)
-        spec = specular(Nf, V, roughness);
-    return Ct * (Ka * ambient() + Kd * diffuse(Nf)) + specularcolor * Ks * spec;
+    return anysl_matte(Nf, Ct, Ka, Kd) + anysl_specular(Nf, V, Ks, roughness, specularcolor);
 }
 
 #endif /* ANYSL_H */

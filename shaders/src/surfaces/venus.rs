@@ -1,6 +1,6 @@
 //! `venus` — a cloudy planetary atmosphere: fBm with a Coriolis twist, coloured by a spline.
 
-use crate::common::{view_frame, VIEW_GLOBALS};
+use crate::common::{view_frame, Finish, VIEW_GLOBALS};
 use anysl_core::prelude::*;
 use anysl_core::GlobalSet;
 
@@ -83,11 +83,10 @@ impl SurfaceShader for Venus {
     #[inline(always)]
     fn shade<F: ShadingFloat, C: ShadingContext<F>>(&self, ctx: &mut C, e: &mut Exec<F>) -> SurfaceOutput<F> {
         let g = *ctx.globals();
-        let (nf, _) = view_frame(&g);
+        let (nf, v) = view_frame(&g);
         let ct = Self::color(self.value(g.P));
-        let amb = ambient(ctx, e);
-        let diff = diffuse(ctx, e, nf);
-        let light = amb * F::c(self.Ka) + diff * F::c(self.Kd);
-        SurfaceOutput { Ci: g.Os * light * ct, Oi: g.Os }
+        let finish = Finish { ka: self.Ka, kd: self.Kd, ks: 0.0, roughness: 1.0, specularcolor: [0.0; 3] };
+        let l = finish.light_sums(ctx, e, nf, v);
+        SurfaceOutput { Ci: g.Os * finish.matte_part(ct, &l), Oi: g.Os }
     }
 }
