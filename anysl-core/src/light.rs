@@ -280,7 +280,7 @@ where
         if light.source_emission() == Some(Emission::Ambient) {
             continue;
         }
-        if !category.is_empty() && !crate::shader::category_matches(light.source_category(), category) {
+        if !category.is_empty() && !category_matches(light.source_category(), category) {
             continue;
         }
         let out = light.evaluate(e, p);
@@ -332,4 +332,31 @@ pub fn sum_ambient<F: ShadingFloat, L: LightSource>(lights: &[L], e: &Exec<F>, p
         }
     }
     sum
+}
+
+/// Whether a light with categories `light` (comma-separated) takes part in
+/// `illuminance(wanted, …)`: an empty `wanted` takes every light; otherwise `wanted` is a
+/// comma-separated list of names, each either `name` (the light must have it) or `-name`
+/// (the light must not); a light takes part when it has any of the wanted names (or no
+/// positive names were given) and none of the excluded ones.
+#[must_use]
+pub fn category_matches(light: &str, wanted: &str) -> bool {
+    let wanted = wanted.trim();
+    if wanted.is_empty() {
+        return true;
+    }
+    let has = |name: &str| light.split(',').any(|c| c.trim() == name);
+    let mut any_positive = false;
+    let mut positive_hit = false;
+    for term in wanted.split(',').map(str::trim).filter(|t| !t.is_empty()) {
+        if let Some(excluded) = term.strip_prefix('-') {
+            if has(excluded.trim()) {
+                return false;
+            }
+        } else {
+            any_positive = true;
+            positive_hit |= has(term);
+        }
+    }
+    !any_positive || positive_hit
 }

@@ -384,33 +384,6 @@ pub trait LightShader: Shader {
     }
 }
 
-/// Whether a light with categories `light` (comma-separated) takes part in
-/// `illuminance(wanted, …)`: an empty `wanted` takes every light; otherwise `wanted` is a
-/// comma-separated list of names, each either `name` (the light must have it) or `-name`
-/// (the light must not); a light takes part when it has any of the wanted names (or no
-/// positive names were given) and none of the excluded ones.
-#[must_use]
-pub fn category_matches(light: &str, wanted: &str) -> bool {
-    let wanted = wanted.trim();
-    if wanted.is_empty() {
-        return true;
-    }
-    let has = |name: &str| light.split(',').any(|c| c.trim() == name);
-    let mut any_positive = false;
-    let mut positive_hit = false;
-    for term in wanted.split(',').map(str::trim).filter(|t| !t.is_empty()) {
-        if let Some(excluded) = term.strip_prefix('-') {
-            if has(excluded.trim()) {
-                return false;
-            }
-        } else {
-            any_positive = true;
-            positive_hit |= has(term);
-        }
-    }
-    !any_positive || positive_hit
-}
-
 /// A displacement shader: moves P and sets N.
 pub trait DisplacementShader: Shader {
     /// Returns the displaced `(P, N)`.

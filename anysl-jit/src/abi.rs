@@ -195,10 +195,6 @@ pub fn output_params(module: &anysl_rsl::ir::Module) -> Vec<(usize, usize, usize
     out
 }
 
-/// Indices into the host table (callbacks that need the renderer's context), declared with
-/// the table itself ([`crate::rt::HostTable`]).
-pub use crate::rt::Host;
-
 /// Most lanes of any [`JitFloat`] (`Pair<Pair<F32x8>>`, `Pair<F32x16>`): the size of the mask
 /// buffers the host passes.
 pub const MAX_LANES: usize = 32;

@@ -248,7 +248,10 @@ pub fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Demo { out } => demo(&out),
-        Command::Render(args) => render::run(&args),
+        Command::Render(args) => match &args.scene_file {
+            Some(file) => rib::run(file, &args),
+            None => render::run(&args),
+        },
         Command::Rslc { cmd } => match rslc::run(&cmd) {
             Ok(code) => return ExitCode::from(code),
             Err(e) => Err(e),

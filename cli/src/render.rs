@@ -360,11 +360,8 @@ pub fn render_with<S: SurfaceShader>(
     }
 }
 
-/// `anysl render`.
+/// `anysl render` of a built-in scene preset (a RIB file is [`crate::rib::run`]'s).
 pub fn run(args: &RenderArgs) -> Result<(), String> {
-    if let Some(file) = &args.scene_file {
-        return crate::rib::run(file, args);
-    }
     let lanes: usize = args.lanes.parse().map_err(|_| format!("--lanes {}: expected 4, 8 or 16", args.lanes))?;
     let is_sl = args.shader.as_deref().is_some_and(|s| s.ends_with(".sl"));
     let default_backend = if is_sl && cfg!(feature = "jit") {

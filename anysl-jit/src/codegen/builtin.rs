@@ -6,7 +6,7 @@ use super::call::space_index;
 use super::noise;
 use super::value::{err, CgError, Repr, Val, M, R, S};
 use super::Cg;
-use crate::abi::Host;
+use crate::rt::Host;
 use crate::rt::{self, RtKind};
 use anysl_rsl::builtins::Builtin;
 use anysl_rsl::ir::{Global, SlotId, Value};

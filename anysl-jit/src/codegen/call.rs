@@ -6,7 +6,7 @@
 use super::math;
 use super::value::{Repr, Shape, Val, M, R, S};
 use super::Cg;
-use crate::abi::Host;
+use crate::rt::Host;
 use crate::rt::{self, RtKind};
 use anysl_rsl::builtins::Builtin;
 use anysl_rsl::ir::{Op, SlotId, UnOp, Value};

@@ -7,7 +7,7 @@
 
 use super::value::{err, Repr, Val, R, S};
 use super::{Cg, LitMemo, NormalKey};
-use crate::abi::Host;
+use crate::rt::Host;
 use anysl_rsl::builtins::Builtin;
 use anysl_rsl::ir::{Op, Value};
 use anysl_rsl::passes::lights::{calls_ambient, NormalSrc};

@@ -4,7 +4,7 @@
 
 use super::value::{Repr, Val, M, R, S};
 use super::{Cg, FnState};
-use crate::abi::Host;
+use crate::rt::Host;
 use anysl_rsl::ir::{self, Block, Global, Node, Op, SlotId, Value};
 use inkwell::module::Linkage;
 use inkwell::types::BasicTypeEnum;

@@ -14,7 +14,7 @@
 //! with the lanes whose cosine is `+0` taken out ([`Cg::pow_of_cosine`]).
 
 use super::{Cg, Repr, M, S};
-use crate::abi::Host;
+use crate::rt::Host;
 use crate::rt::{self, RtKind};
 use anysl_core::{Falloff, LightData, LightKind};
 use anysl_rsl::ir::Global;

@@ -5,6 +5,7 @@
 mod control_flow;
 mod docs_links;
 mod instantiations;
+mod layout;
 mod renderers_agree;
 mod stability;
 mod workload;

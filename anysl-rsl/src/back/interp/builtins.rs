@@ -2,8 +2,7 @@
 //! preparation, to a [`Bi`], and executed per chunk through the generic standard library of
 //! `anysl-core` (the same code the generic Rust shaders and generated Rust call).
 
-use super::exec::Frame;
-use super::prepare::Loc;
+use super::frame::{Frame, Loc};
 use super::texture;
 use crate::builtins::Builtin;
 use crate::ir::Const;

@@ -1,7 +1,8 @@
 //! Running a [`Program`]: register files, masked control flow, and the shader boundary.
 
 use super::builtins;
-use super::prepare::{Arith, CNode, Cmp, Code, Loc, Program};
+use super::frame::{Frame, Loc};
+use super::prepare::{Arith, CNode, Cmp, Code, Program};
 use crate::ir::{Const, Global, Module, ShaderKind};
 use crate::types::BaseType;
 use anysl_core::exec::INTERVAL_LOOP_LIMIT;
@@ -12,85 +13,6 @@ use std::any::Any;
 use std::cell::RefCell;
 use std::ops::Range;
 use std::sync::Arc;
-
-/// The register files of one batch: `n` chunks of `F` per register.
-pub struct Frame<F: ShadingFloat> {
-    pub(crate) n: usize,
-    pub(crate) f: Vec<F>,
-    pub(crate) m: Vec<F::Mask>,
-    pub(crate) s: Vec<String>,
-    loops: Vec<(Vec<F::Mask>, Vec<F::Mask>)>,
-    rets: Vec<Vec<F::Mask>>,
-    widening: bool,
-    /// `L` as set by `illuminate`/`solar` (for light shaders whose body never names `L`).
-    light_l: Vec3<F>,
-    /// The surface point a light shader is evaluated for (`Ps`).
-    light_ps: Vec3<F>,
-}
-
-impl<F: ShadingFloat> Frame<F> {
-    #[inline(always)]
-    pub(crate) fn get(&self, r: u32, k: usize) -> F {
-        self.f[r as usize * self.n + k]
-    }
-    #[inline(always)]
-    pub(crate) fn set(&mut self, r: u32, k: usize, v: F) {
-        self.f[r as usize * self.n + k] = v;
-    }
-    #[inline(always)]
-    pub(crate) fn vec3(&self, r: u32, k: usize) -> Vec3<F> {
-        Vec3::new(self.get(r, k), self.get(r + 1, k), self.get(r + 2, k))
-    }
-    #[inline(always)]
-    pub(crate) fn color(&self, r: u32, k: usize) -> Color<F> {
-        Color::new(self.get(r, k), self.get(r + 1, k), self.get(r + 2, k))
-    }
-    #[inline(always)]
-    pub(crate) fn set3(&mut self, r: u32, k: usize, v: [F; 3]) {
-        for (i, x) in v.into_iter().enumerate() {
-            self.set(r + i as u32, k, x);
-        }
-    }
-    #[inline(always)]
-    pub(crate) fn mask(&self, r: u32, k: usize) -> F::Mask {
-        self.m[r as usize * self.n + k]
-    }
-    #[inline(always)]
-    pub(crate) fn set_mask(&mut self, r: u32, k: usize, v: F::Mask) {
-        self.m[r as usize * self.n + k] = v;
-    }
-    pub(crate) fn matrix(&self, r: u32, k: usize) -> Matrix4<F> {
-        Matrix4 { m: core::array::from_fn(|i| core::array::from_fn(|j| self.get(r + (i * 4 + j) as u32, k))) }
-    }
-    pub(crate) fn set_matrix(&mut self, r: u32, k: usize, m: &Matrix4<F>) {
-        for i in 0..4 {
-            for j in 0..4 {
-                self.set(r + (i * 4 + j) as u32, k, m.m[i][j]);
-            }
-        }
-    }
-
-    /// Masked write of `w` components starting at `dst` in chunk `k`.
-    #[inline(always)]
-    pub(crate) fn write(&mut self, dst: u32, k: usize, m: F::Mask, vals: &[F]) {
-        let all = m.all() && !self.widening;
-        for (i, &v) in vals.iter().enumerate() {
-            let r = dst + i as u32;
-            let nv = if all { v } else { F::select(m, v, self.get(r, k)) };
-            self.set(r, k, if self.widening { <F as Blend<F>>::widen(nv) } else { nv });
-        }
-    }
-
-    /// Reads the `width` components of a location in chunk `k` (for outputs and tests).
-    #[must_use]
-    pub fn read(&self, loc: Loc, k: usize) -> Vec<F> {
-        match loc {
-            Loc::Num { off, width } => (0..width).map(|c| self.get(off + c, k)).collect(),
-            Loc::Mask(r) => vec![F::select(self.mask(r, k), F::c(1.0), F::c(0.0))],
-            _ => Vec::new(),
-        }
-    }
-}
 
 thread_local! {
     static POOL: RefCell<Vec<Box<dyn Any>>> = const { RefCell::new(Vec::new()) };

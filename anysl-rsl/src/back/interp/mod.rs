@@ -13,8 +13,10 @@
 
 mod builtins;
 pub mod exec;
+mod frame;
 mod prepare;
 pub mod texture;
 
-pub use exec::{release, run_batch, Frame, InterpLight, InterpShader};
-pub use prepare::{Loc, PrepareError, Program};
+pub use exec::{release, run_batch, InterpLight, InterpShader};
+pub use frame::{Frame, Loc};
+pub use prepare::{PrepareError, Program};

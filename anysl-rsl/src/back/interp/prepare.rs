@@ -1,43 +1,10 @@
 //! IR → register-allocated code tree.
 
 use super::builtins::{self, Bi};
+use super::frame::Loc;
 use crate::ir::{BinOp, Block, Const, Global, Module, Node, Op, SlotKind, UnOp, Value};
 use crate::types::{BaseType, Type};
 use std::fmt;
-
-/// Where a value or variable lives.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Loc {
-    /// Numeric registers `off .. off + width` (each register holds one `F` per chunk).
-    Num {
-        /// First register.
-        off: u32,
-        /// Number of float components (arrays: element width × length).
-        width: u32,
-    },
-    /// A lane mask.
-    Mask(u32),
-    /// A uniform string (arrays: `len` consecutive strings).
-    Str(u32, u32),
-    /// Nothing (void).
-    None,
-}
-
-impl Loc {
-    pub(crate) fn off(self) -> u32 {
-        match self {
-            Loc::Num { off, .. } => off,
-            Loc::Mask(i) | Loc::Str(i, _) => i,
-            Loc::None => 0,
-        }
-    }
-    pub(crate) fn width(self) -> u32 {
-        match self {
-            Loc::Num { width, .. } => width,
-            _ => 1,
-        }
-    }
-}
 
 /// Arithmetic operators of [`Code::Arith`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -2,8 +2,7 @@
 //! coordinate arguments from the frame and calling the run-time library's look-ups
 //! ([`anysl_rt::texture`]), so the interpreter and generated Rust read the same texels.
 
-use super::exec::Frame;
-use super::prepare::Loc;
+use super::frame::{Frame, Loc};
 use anysl_core::prelude::*;
 use anysl_rt::texture::{sample_environment, sample_st};
 
