@@ -20,12 +20,12 @@
 
 use crate::build::{Film, FrameDesc, ShaderCall};
 use crate::film::{reconstruct, SampleWindow};
-use crate::shaders::{apply_params, standard_light, ShaderLibrary};
+use crate::lights::{scene_light, SceneLight};
+use crate::shaders::{apply_params, ShaderLibrary};
 use anysl_core::{Matrix4, Spaces, SurfaceShader};
 use anysl_renderers::Projection;
 use anysl_renderers::{Camera, Image, Scene};
 use anysl_rsl::back::interp::{InterpShader, Program};
-use anysl_shaders::Light;
 use glam::DMat4;
 use std::collections::HashMap;
 use std::sync::Arc;
@@ -102,7 +102,7 @@ impl Surfaces<InterpShader> {
 /// them.
 pub struct FrameScene<S> {
     /// The renderer scene; its camera renders one pixel per film sample.
-    pub scene: Scene<S, Light>,
+    pub scene: Scene<S, SceneLight>,
     /// The samples' window.
     pub window: SampleWindow,
     /// Warnings (parameters that do not fit, unsupported lights).
@@ -112,7 +112,9 @@ pub struct FrameScene<S> {
 /// Builds the renderer scene of `frame` with surface shaders from `surfaces`.
 ///
 /// # Errors
-/// A surface shader that cannot be found or compiled, or inconsistent geometry.
+/// A surface shader that cannot be found or compiled, a light shader that is found but does not
+/// compile or is not a light shader, or inconsistent geometry. (A light shader that is not
+/// found is left out with a warning.)
 pub fn frame_scene<S: SurfaceShader + Clone>(
     frame: &FrameDesc,
     surfaces: &mut Surfaces<S>,
@@ -125,14 +127,16 @@ pub fn frame_scene<S: SurfaceShader + Clone>(
         shaders.push(s);
     }
     let mut lights = Vec::new();
+    let mut spaces = None;
     for call in &frame.lights {
-        match standard_light(call) {
-            Ok((light, w)) => {
-                warnings.extend(w);
-                lights.push(light);
-            }
-            Err(e) => warnings.push(format!("{e}; the light is left out")),
+        if let Err(e) = surfaces.library.find(&call.shader.name) {
+            warnings.push(format!("{e}; the light is left out"));
+            continue;
         }
+        let spaces = spaces.get_or_insert_with(|| frame_spaces(frame));
+        let (light, w) = scene_light(call, &mut surfaces.library, spaces)?;
+        warnings.extend(w);
+        lights.push(light);
     }
     if shaders.is_empty() {
         // A world without primitives still needs a shader slot.

@@ -4,4 +4,5 @@
 //! `cargo test -p anysl-scene --test scenes spaces::` runs one module.
 
 mod known_answers;
+mod lights;
 mod spaces;
