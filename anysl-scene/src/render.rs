@@ -127,15 +127,19 @@ pub fn frame_scene<S: SurfaceShader + Clone>(
         shaders.push(s);
     }
     let mut lights = Vec::new();
+    // Frame light k → its index in `lights` (none when it is left out).
+    let mut light_of = Vec::with_capacity(frame.lights.len());
     let mut spaces = None;
     for call in &frame.lights {
         if let Err(e) = surfaces.library.find(&call.shader.name) {
             warnings.push(format!("{e}; the light is left out"));
+            light_of.push(None);
             continue;
         }
         let spaces = spaces.get_or_insert_with(|| frame_spaces(frame));
         let (light, w) = scene_light(call, &mut surfaces.library, spaces)?;
         warnings.extend(w);
+        light_of.push(Some(lights.len()));
         lights.push(light);
     }
     if shaders.is_empty() {
@@ -146,9 +150,11 @@ pub fn frame_scene<S: SurfaceShader + Clone>(
     let (w, h) = window.sample_size();
     let camera = Camera::from_spec(&window.camera(&frame.camera, &frame.film), w, h);
     let mut instances = frame.instances.clone();
-    let surface_spaces = place_spaces(frame, &surfaces.uses_spaces, &mut instances, &mut shaders);
+    let mut surface_spaces = place_spaces(frame, &surfaces.uses_spaces, &mut instances, &mut shaders);
+    let surface_lights = place_lights(frame, &light_of, &lights, &mut instances, &mut shaders, &mut surface_spaces);
     let mut scene = Scene::new(camera, &frame.meshes, instances, shaders, lights).map_err(|e| e.to_string())?;
     scene.surface_spaces = surface_spaces;
+    scene.surface_lights = surface_lights;
     Ok(FrameScene { scene, window, warnings })
 }
 
@@ -215,6 +221,54 @@ pub fn frame_spaces(frame: &FrameDesc) -> Spaces {
         t.insert(name, rows(rsl(m.as_dmat4())));
     }
     t
+}
+
+/// Per-primitive light lists: where some instance is not lit by every light of the frame,
+/// each distinct (surface slot, light list) gets a slot of its own (a copy of the shader, with
+/// the slot's spaces) and the lights of its list; returns each slot's lights (`None`: all).
+fn place_lights<S: Clone, L: Clone>(
+    frame: &FrameDesc,
+    light_of: &[Option<usize>],
+    lights: &[L],
+    instances: &mut [anysl_renderers::Instance],
+    shaders: &mut Vec<S>,
+    spaces: &mut Vec<Spaces>,
+) -> Vec<Option<Vec<L>>> {
+    let mut out: Vec<Option<Vec<L>>> = vec![None; shaders.len()];
+    // Each list as indices into `lights` (the frame's lists hold distinct lights, so a list as
+    // long as `lights` is all of them).
+    let sets: Vec<Vec<usize>> = frame
+        .light_lists
+        .iter()
+        .map(|l| l.iter().filter_map(|&k| light_of.get(k as usize).copied().flatten()).collect())
+        .collect();
+    let partial = |list: usize| sets.get(list).is_some_and(|s| s.len() < lights.len());
+    if !(0..sets.len()).any(partial) {
+        return out;
+    }
+    let mut slots: HashMap<(usize, u32), usize> = HashMap::new();
+    let mut first_use = vec![true; shaders.len()];
+    for (i, inst) in instances.iter_mut().enumerate() {
+        let list = frame.instance_lights.get(i).copied().unwrap_or(0);
+        let s = inst.surface;
+        if let Some(&k) = slots.get(&(s, list)) {
+            inst.surface = k;
+            continue;
+        }
+        let k = if std::mem::take(&mut first_use[s]) {
+            s
+        } else {
+            shaders.push(shaders[s].clone());
+            spaces.resize(shaders.len() - 1, Spaces::default());
+            spaces.push(spaces.get(s).cloned().unwrap_or_default());
+            out.push(None);
+            shaders.len() - 1
+        };
+        out[k] = partial(list as usize).then(|| sets[list as usize].iter().map(|&j| lights[j].clone()).collect());
+        inst.surface = k;
+        slots.insert((s, list), k);
+    }
+    out
 }
 
 /// The named spaces of every surface: a shader that names a space gets one surface slot per

@@ -74,4 +74,4 @@ pub use render::pbrt::{render_pbrt, Integrator};
 pub use render::scalar::{render_scalar, render_scalar_as};
 pub use render::RenderOptions;
 pub use scene::{Instance, Scene, SceneError, Sky, SurfaceHit};
-pub use shading::{FilteredShading, GroupShading, KernelShading, PlainShading};
+pub use shading::{FilteredShading, GroupShading, KernelShading, LightTables, PlainShading};

@@ -108,6 +108,12 @@ pub struct Scene<S, L> {
     /// surface without an entry sees [`Spaces::standard`]. Read only by shaders that name a
     /// space.
     pub surface_spaces: Vec<Spaces>,
+    /// The lights each surface slot sees (by [`Instance::surface`]) when that is not every
+    /// light of the scene: RenderMan's per-primitive light lists (`Illuminate`, lights
+    /// declared inside an attribute block). A front end gives each distinct (surface shader,
+    /// light list) its own slot. A slot without an entry, or with `None`, sees
+    /// [`Scene::lights`].
+    pub surface_lights: Vec<Option<Vec<L>>>,
     /// What escaping rays see.
     pub sky: Sky,
     instances: Vec<Instance>,
@@ -133,6 +139,16 @@ pub struct Scene<S, L> {
 }
 
 impl<S, L> Scene<S, L> {
+    /// The lights the points of surface slot `surface` see ([`Scene::surface_lights`]).
+    #[inline]
+    #[must_use]
+    pub fn lights_for(&self, surface: u32) -> &[L] {
+        match self.surface_lights.get(surface as usize) {
+            Some(Some(lights)) => lights,
+            _ => &self.lights,
+        }
+    }
+
     /// Places `meshes` by `instances` in world space and builds the BVH.
     ///
     /// # Errors
@@ -235,6 +251,7 @@ impl<S, L> Scene<S, L> {
             surfaces,
             lights,
             surface_spaces: Vec::new(),
+            surface_lights: Vec::new(),
             sky: Sky::default(),
             instances,
             positions,

@@ -30,6 +30,12 @@ pub struct FrameDesc {
     pub surfaces: Vec<ShaderCall>,
     /// The light sources that illuminate some primitive, in the order declared.
     pub lights: Vec<LightCall>,
+    /// Per instance, the lights that illuminate it: an index into `light_lists`.
+    pub instance_lights: Vec<u32>,
+    /// The distinct light lists of the instances, as indices into `lights` (RenderMan's
+    /// per-primitive light lists: the lights on at the primitive, by `LightSource` in an
+    /// enclosing attribute block or `Illuminate`).
+    pub light_lists: Vec<Vec<u32>>,
     /// Named coordinate systems (`CoordinateSystem`): name → that space's object-to-world.
     pub coordinate_systems: BTreeMap<String, Mat4>,
 }

@@ -148,6 +148,11 @@ pub struct SceneBuilder {
     surfaces: Vec<ShaderCall>,
     lights: Vec<LightCall>,
     light_used: Vec<bool>,
+    /// Per instance, its light list (an index into `light_lists`).
+    instance_lights: Vec<u32>,
+    /// The distinct light lists of the instances (indices into `lights`), interned.
+    light_lists: Vec<Vec<u32>>,
+    light_list_index: HashMap<Vec<u32>, u32>,
     light_handles: HashMap<Handle, usize>,
     objects: HashMap<Handle, Vec<ObjectPart>>,
     recording: Option<(Handle, Mat4, Vec<ObjectPart>)>,
@@ -223,6 +228,9 @@ impl SceneBuilder {
             surfaces: Vec::new(),
             lights: Vec::new(),
             light_used: Vec::new(),
+            instance_lights: Vec::new(),
+            light_lists: Vec::new(),
+            light_list_index: HashMap::new(),
             light_handles: HashMap::new(),
             objects: HashMap::new(),
             recording: None,
@@ -341,11 +349,23 @@ impl SceneBuilder {
         // the default orientation. Only "inside" (after the handedness check of `Orientation
         // "lh"/"rh"`) turns them around.
         inst.flip_normals = attrs.inside;
+        let mut list = Vec::new();
         for (k, on) in attrs.lights_on.iter().enumerate() {
             if *on {
                 self.light_used[k] = true;
+                list.push(k as u32);
             }
         }
+        let index = match self.light_list_index.get(&list) {
+            Some(&i) => i,
+            None => {
+                let i = self.light_lists.len() as u32;
+                self.light_list_index.insert(list.clone(), i);
+                self.light_lists.push(list);
+                i
+            }
+        };
+        self.instance_lights.push(index);
         self.instances.push(inst);
         self.shader_spaces.push(attrs.shader_space);
     }
@@ -484,6 +504,14 @@ impl RibBuilder for SceneBuilder {
         };
         let lights: Vec<LightCall> =
             self.lights.iter().zip(&self.light_used).filter(|(_, used)| **used).map(|(l, _)| l.clone()).collect();
+        // Light lists by the frame's light indices (the lights no primitive uses left out).
+        let mut renumber = Vec::with_capacity(self.light_used.len());
+        let mut next = 0u32;
+        for &used in &self.light_used {
+            renumber.push(next);
+            next += u32::from(used);
+        }
+        let light_lists = self.light_lists.iter().map(|l| l.iter().map(|&k| renumber[k as usize]).collect()).collect();
         let frame = FrameDesc {
             number: self.frame_number,
             index: self.frames.len(),
@@ -495,11 +523,15 @@ impl RibBuilder for SceneBuilder {
             shader_spaces: std::mem::take(&mut self.shader_spaces),
             surfaces: std::mem::take(&mut self.surfaces),
             lights,
+            instance_lights: std::mem::take(&mut self.instance_lights),
+            light_lists,
             coordinate_systems: std::mem::take(&mut self.coordinate_systems),
         };
         self.frames.push(frame);
         self.lights.clear();
         self.light_used.clear();
+        self.light_lists.clear();
+        self.light_list_index.clear();
         self.light_handles.clear();
         self.objects.clear();
         self.recording = None;

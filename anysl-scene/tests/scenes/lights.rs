@@ -150,3 +150,56 @@ fn a_surface_shader_named_as_a_light_is_an_error() {
     let Err(e) = frame_scene(&frame, &mut surfaces) else { panic!("a surface shader lit the scene") };
     assert!(e.contains("\"matte\"") && e.contains("light shader"), "{e}");
 }
+
+/// Two spheres side by side (left at x = -1.2, right at x = 1.2) seen from z = -6, lit from
+/// the camera's side by `left_light` (declared with the left sphere) and `right_light`.
+fn two_spheres(left: &str, right: &str) -> String {
+    format!(
+        "Format 48 24 1 PixelSamples 1 1 PixelFilter \"box\" 1 1\n\
+         Projection \"perspective\" \"fov\" 30 Translate 0 0 6\n\
+         WorldBegin\n\
+         LightSource \"ambientlight\" 1 \"intensity\" 0.05\n\
+         AttributeBegin {left} Translate -1.2 0 0 Surface \"matte\" Sphere 1 -1 1 360 AttributeEnd\n\
+         AttributeBegin {right} Translate 1.2 0 0 Surface \"matte\" Sphere 1 -1 1 360 AttributeEnd\n\
+         WorldEnd"
+    )
+}
+
+/// The red channel at the centres of the left and right spheres.
+fn centres(px: &[[f32; 4]]) -> (f32, f32) {
+    // The spheres' centres project to x = ±1.2 / 6 / tan(15°) of the half-width (24 px).
+    let dx = (1.2 / 6.0 / 15f32.to_radians().tan() * 12.0).round() as usize;
+    (px[12 * 48 + 24 - dx][0], px[12 * 48 + 24 + dx][0])
+}
+
+#[test]
+fn a_light_declared_in_an_attribute_block_lights_only_its_primitives() {
+    let light = "LightSource \"distantlight\" 2 \"from\" [0 0 -1] \"to\" [0 0 0]";
+    let both = render(&two_spheres("", &format!("{light} Illuminate 2 1")), false);
+    let left_only = render(&two_spheres(light, ""), false);
+    let (l, r) = centres(&left_only);
+    assert!(l > 0.9 && r < 0.06, "left {l}, right {r}");
+    // Declared with the right sphere, the left one (shaded before) does not see it either.
+    let (l, r) = centres(&both);
+    assert!(l < 0.06 && r > 0.9, "left {l}, right {r}");
+    // The packet renderer keeps the light lists too.
+    let packet = render(&two_spheres(light, ""), true);
+    assert!(max_diff(&left_only, &packet) < 1e-4, "{}", max_diff(&left_only, &packet));
+}
+
+#[test]
+fn illuminate_turns_a_light_off_for_later_primitives() {
+    let rib = format!(
+        "Format 48 24 1 PixelSamples 1 1 PixelFilter \"box\" 1 1\n\
+         Projection \"perspective\" \"fov\" 30 Translate 0 0 6\n\
+         WorldBegin\n\
+         LightSource \"ambientlight\" 1 \"intensity\" 0.05\n\
+         TransformBegin Translate 0 0 -1 LightSource \"shaderpoint\" 2 \"intensity\" 30 TransformEnd\n\
+         AttributeBegin Translate -1.2 0 0 Surface \"matte\" Sphere 1 -1 1 360 AttributeEnd\n\
+         Illuminate 2 0\n\
+         AttributeBegin Translate 1.2 0 0 Surface \"matte\" Sphere 1 -1 1 360 AttributeEnd\n\
+         WorldEnd"
+    );
+    let (l, r) = centres(&render(&rib, false));
+    assert!(l > 0.5 && r < 0.06, "left {l}, right {r}");
+}

@@ -14,8 +14,10 @@ use super::{render_bands, sample_offset, RenderOptions};
 use crate::accel::{Hit, RayPacket, MAX_PACKET};
 use crate::image::Image;
 use crate::scene::{Scene, SurfaceHit};
-use crate::shading::{shade_lanes_by, Depth, FilteredShading, GroupShading, KernelShading, Lanes, Tracer, MAX_LANES};
-use anysl_core::{Globals, LightData, LightShader, ShadingFloat, SurfaceOutput, SurfaceShader};
+use crate::shading::{
+    shade_lanes_by, Depth, FilteredShading, GroupShading, KernelShading, Lanes, LightTables, Tracer, MAX_LANES,
+};
+use anysl_core::{Globals, LightShader, ShadingFloat, SurfaceOutput, SurfaceShader};
 use glam::Vec3A;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::{Duration, Instant};
@@ -231,8 +233,8 @@ where
     let n = opts.grid();
     let weight = 1.0 / (n * n) as f32;
     let footprint = 1.0 / n as f32;
-    let light_data = LightData::of_all(&scene.lights);
-    let tracer = Tracer::new(scene, opts.shadows, light_data.as_deref());
+    let light_data = LightTables::of(scene);
+    let tracer = Tracer::new(scene, opts.shadows, &light_data);
     let band_rows = 8u32.max(bh);
     let label = format!("packet {}×{} {}", bw, bh, F::NAME);
 

@@ -32,11 +32,12 @@ use super::{render_bands, sample_offset, RenderOptions};
 use crate::image::Image;
 use crate::scene::{Scene, SurfaceHit};
 use crate::shading::{
-    gather_globals, ray_epsilon, shade_lanes_by, Depth, FilteredShading, Lanes, ProbeContext, Tracer, MAX_LAYERS,
+    gather_globals, ray_epsilon, shade_lanes_by, Depth, FilteredShading, Lanes, LightTables, ProbeContext, Tracer,
+    MAX_LAYERS,
 };
 use anysl_ad::Dual;
 use anysl_core::points::SplitMix64;
-use anysl_core::{Emission, Exec, LightData, LightShader, ParamValue, SurfaceShader, Vec3};
+use anysl_core::{Emission, Exec, LightShader, ParamValue, SurfaceShader, Vec3};
 use glam::Vec3A;
 
 /// How the pbrt-like renderer computes the light leaving a surface.
@@ -82,8 +83,8 @@ where
     let n = opts.grid();
     let weight = 1.0 / (n * n) as f32;
     let footprint = 1.0 / n as f32;
-    let light_data = LightData::of_all(&scene.lights);
-    let tracer = Tracer::new(scene, opts.shadows, light_data.as_deref());
+    let light_data = LightTables::of(scene);
+    let tracer = Tracer::new(scene, opts.shadows, &light_data);
     let derivs = FilteredShading::flags(&scene.surfaces, opts.derivatives);
     let filtered = FilteredShading { uses_derivatives: &derivs };
     let passive = Passive { scene, params: &params, shadows: opts.shadows, derivs: &derivs };
@@ -203,7 +204,7 @@ impl<S: SurfaceShader, L: LightShader> Passive<'_, S, L> {
         let eps = ray_epsilon(p);
         let mut diffuse = Vec3A::ZERO;
         let mut specular = Vec3A::ZERO;
-        for light in &self.scene.lights {
+        for light in self.scene.lights_for(sh.surface) {
             let out = light.light::<f32>(&mut Exec::new(), ps);
             if !out.lit {
                 continue;

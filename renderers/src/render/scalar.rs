@@ -8,9 +8,9 @@
 use super::{render_bands, sample_offset, RenderOptions};
 use crate::image::Image;
 use crate::scene::Scene;
-use crate::shading::{shade_lanes, Depth, FilteredShading, Lanes, Tracer};
+use crate::shading::{shade_lanes, Depth, FilteredShading, Lanes, LightTables, Tracer};
 use anysl_ad::Dual;
-use anysl_core::{Color, LightData, LightShader, ShadingFloat, SurfaceShader};
+use anysl_core::{Color, LightShader, ShadingFloat, SurfaceShader};
 
 /// Renders `scene` one ray at a time; see the module docs.
 #[must_use]
@@ -44,8 +44,8 @@ where
     let n = opts.grid();
     let weight = 1.0 / (n * n) as f32;
     let footprint = 1.0 / n as f32;
-    let light_data = LightData::of_all(&scene.lights);
-    let tracer = Tracer::new(scene, opts.shadows, light_data.as_deref());
+    let light_data = LightTables::of(scene);
+    let tracer = Tracer::new(scene, opts.shadows, &light_data);
     let label = format!("scalar {}", P::NAME);
 
     render_bands(width, height, 1, opts, &label, |y, row| {
