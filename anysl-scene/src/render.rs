@@ -155,6 +155,8 @@ pub fn frame_scene<S: SurfaceShader + Clone>(
     let mut scene = Scene::new(camera, &frame.meshes, instances, shaders, lights).map_err(|e| e.to_string())?;
     scene.surface_spaces = surface_spaces;
     scene.surface_lights = surface_lights;
+    // RenderMan has no sky: a ray that meets nothing (`trace`, a path tracer's bounce) sees black.
+    scene.sky = anysl_renderers::Sky { horizon: [0.0; 3], zenith: [0.0; 3], visible_to_camera: false };
     Ok(FrameScene { scene, window, warnings })
 }
 

@@ -803,16 +803,22 @@ impl<F: ShadingFloat, S: SurfaceShader, L: LightShader> ShadingContext<F> for Sc
 
 /// A context that evaluates a surface shader *passively* (the path tracer's material
 /// interface): one unit white light from the viewer-facing normal direction, no ambient
-/// light, and `trace` sees black.
-pub struct ProbeContext<F: ShadingFloat> {
+/// light, and `trace` sees black. Named spaces are the surface's own.
+pub struct ProbeContext<'s, F: ShadingFloat> {
     /// The points being shaded.
     pub globals: Globals<F>,
+    /// The named spaces the shader sees ([`Scene::surface_spaces`]).
+    pub spaces: &'s Spaces,
 }
 
-impl<F: ShadingFloat> ShadingContext<F> for ProbeContext<F> {
+impl<F: ShadingFloat> ShadingContext<F> for ProbeContext<'_, F> {
     #[inline(always)]
     fn globals(&self) -> &Globals<F> {
         &self.globals
+    }
+
+    fn spaces(&self) -> &Spaces {
+        self.spaces
     }
 
     #[inline(always)]

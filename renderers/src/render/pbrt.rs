@@ -37,7 +37,7 @@ use crate::shading::{
 };
 use anysl_ad::Dual;
 use anysl_core::points::SplitMix64;
-use anysl_core::{Emission, Exec, LightShader, ParamValue, SurfaceShader, Vec3};
+use anysl_core::{Emission, Exec, LightShader, ParamValue, Spaces, SurfaceShader, Vec3};
 use glam::Vec3A;
 
 /// How the pbrt-like renderer computes the light leaving a surface.
@@ -183,13 +183,14 @@ impl<S: SurfaceShader, L: LightShader> Passive<'_, S, L> {
     /// uses derivatives; hits of secondary rays carry none).
     fn material(&self, sh: &SurfaceHit) -> (Vec3A, Vec3A) {
         let shader = &self.scene.surfaces[sh.surface as usize];
+        let spaces = self.scene.surface_spaces.get(sh.surface as usize).unwrap_or(Spaces::standard());
         if self.derivs[sh.surface as usize] {
-            let mut ctx = ProbeContext { globals: gather_globals::<Dual<f32>>(std::slice::from_ref(sh), 1, 0) };
+            let mut ctx = ProbeContext { globals: gather_globals::<Dual<f32>>(std::slice::from_ref(sh), 1, 0), spaces };
             let out = shader.shade(&mut ctx, &mut Exec::<Dual<f32>>::new());
             let (ci, oi) = (out.Ci, out.Oi);
             (Vec3A::new(ci.r.val, ci.g.val, ci.b.val), Vec3A::new(oi.r.val, oi.g.val, oi.b.val))
         } else {
-            let mut ctx = ProbeContext { globals: gather_globals::<f32>(std::slice::from_ref(sh), 1, 0) };
+            let mut ctx = ProbeContext { globals: gather_globals::<f32>(std::slice::from_ref(sh), 1, 0), spaces };
             let out = shader.shade(&mut ctx, &mut Exec::<f32>::new());
             (Vec3A::new(out.Ci.r, out.Ci.g, out.Ci.b), Vec3A::new(out.Oi.r, out.Oi.g, out.Oi.b))
         }
