@@ -63,7 +63,7 @@ pub mod scenes;
 pub mod shading;
 
 pub use accel::{Accel, Hit};
-pub use camera::{Camera, CameraSpec, PrimaryRay, Projection};
+pub use camera::{Camera, CameraSpec, PrimaryRay, Projection, RayDifferential};
 pub use image::Image;
 pub use mesh::{Mesh, ObjError};
 pub use render::packet::{

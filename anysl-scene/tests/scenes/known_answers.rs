@@ -163,6 +163,33 @@ fn orthographic_size_does_not_depend_on_distance() {
     assert!(pnear > 3 * pfar, "{pnear} vs {pfar}");
 }
 
+/// Orthographic rays differ in origin, not direction: a plane facing the camera has `area(P)`
+/// one pixel's area of the screen window, at any distance, in the scalar and packet
+/// renderers (the screen derivatives come from the origin differentials).
+#[test]
+fn orthographic_derivatives_are_the_pixel_spacing() {
+    let dir = std::env::temp_dir().join(format!("anysl-scene-ortho-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    std::fs::write(dir.join("showarea.sl"), "surface showarea(float scale = 1;) { Ci = area(P) * scale; Oi = 1; }")
+        .expect("write shader");
+    for d in [3.0, 30.0] {
+        let rib = format!(
+            "Format 16 16 1 {ONE_SAMPLE} Projection \"orthographic\" ScreenWindow -2 2 -2 2\n\
+             WorldBegin Surface \"showarea\" \"scale\" 16 Translate 0 0 {d}\n\
+             Polygon \"P\" [-5 -5 0 5 -5 0 5 5 0 -5 5 0] WorldEnd"
+        );
+        let frame = frames(&rib).remove(0);
+        let mut surfaces = Surfaces::interpreter(ShaderLibrary::new(vec![dir.clone()], Vec::new()));
+        let fs = frame_scene(&frame, &mut surfaces).expect("the scene builds");
+        let opts = RenderOptions { threads: 1, ..RenderOptions::default() };
+        for image in [render_scalar(&fs.scene, &opts), render_packet::<F32x8, _, _>(&fs.scene, &opts)] {
+            let px = fs.finish(&frame.film, &image);
+            // Pixels are 0.25 apart: area 1/16, times 16.
+            assert!(px.iter().all(|p| (p[0] - 1.0).abs() < 1e-4), "{:?}", &px[..4]);
+        }
+    }
+}
+
 fn psnr(a: &[[f32; 4]], b: &[[f32; 4]]) -> f64 {
     let mse: f64 = a
         .iter()

@@ -12,6 +12,7 @@
 
 use super::{render_bands, sample_offset, RenderOptions};
 use crate::accel::{Hit, RayPacket, MAX_PACKET};
+use crate::camera::RayDifferential;
 use crate::image::Image;
 use crate::scene::{Scene, SurfaceHit};
 use crate::shading::{
@@ -263,13 +264,13 @@ where
                     let (ox, oy) = sample_offset(k, n);
                     // Trace the packet: all its rays through the BVH together.
                     let mut rays = RayPacket::default();
-                    let mut differentials = [(Vec3A::ZERO, Vec3A::ZERO); MAX_LANES];
+                    let mut differentials = [RayDifferential::default(); MAX_LANES];
                     for lane in (0..packet_lanes).filter(|lane| (active >> lane) & 1 != 0) {
                         let (px, py) = lane_pixel(lane);
                         let ray = cam.primary_ray(px as f32 + ox, (y0 + py) as f32 + oy, footprint);
                         dirs[lane] = ray.dir;
                         origins[lane] = ray.origin;
-                        differentials[lane] = (ray.ddx, ray.ddy);
+                        differentials[lane] = ray.differential();
                         rays.set(lane, ray.origin, ray.dir, ray.tmin, ray.tmax);
                     }
                     let hit = scene.intersect_packet_camera(&rays, &mut found);

@@ -29,6 +29,7 @@
 //! material does so too, so its base colour is filtered like the other renderers' pictures.
 
 use super::{render_bands, sample_offset, RenderOptions};
+use crate::camera::RayDifferential;
 use crate::image::Image;
 use crate::scene::{Scene, SurfaceHit};
 use crate::shading::{
@@ -102,10 +103,10 @@ where
             for k in 0..n * n {
                 let (ox, oy) = sample_offset(k, n);
                 let ray = cam.primary_ray(x as f32 + ox, y as f32 + oy, footprint);
-                let (o, d, ddx, ddy) = (ray.origin, ray.dir, ray.ddx, ray.ddy);
+                let (o, d, diff) = (ray.origin, ray.dir, ray.differential());
                 acc += match integrator {
-                    Integrator::Active => li_active(tracer, filtered, o, d, (ddx, ddy), (ray.tmin, ray.tmax)),
-                    Integrator::Passive => passive.li(o, d, Some((ddx, ddy)), 0, 0, true, &mut rng),
+                    Integrator::Active => li_active(tracer, filtered, o, d, diff, (ray.tmin, ray.tmax)),
+                    Integrator::Passive => passive.li(o, d, Some(diff), 0, 0, true, &mut rng),
                 };
             }
             *pixel = (acc * weight).to_array();
@@ -119,7 +120,7 @@ fn li_active<S: SurfaceShader, L: LightShader>(
     how: FilteredShading<'_>,
     o: Vec3A,
     d: Vec3A,
-    diff: (Vec3A, Vec3A),
+    diff: RayDifferential,
     (tmin, tmax): (f32, f32),
 ) -> Vec3A {
     let scene = tracer.scene;
@@ -148,7 +149,7 @@ impl<S: SurfaceShader, L: LightShader> Passive<'_, S, L> {
         &self,
         o: Vec3A,
         d: Vec3A,
-        diff: Option<(Vec3A, Vec3A)>,
+        diff: Option<RayDifferential>,
         bounce: u32,
         layer: u32,
         camera: bool,

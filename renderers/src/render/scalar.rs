@@ -54,7 +54,7 @@ where
             for k in 0..n * n {
                 let (ox, oy) = sample_offset(k, n);
                 let ray = cam.primary_ray(x as f32 + ox, y as f32 + oy, footprint);
-                let (o, d, ddx, ddy) = (ray.origin, ray.dir, ray.ddx, ray.ddy);
+                let (o, d) = (ray.origin, ray.dir);
                 let dirs = [d];
                 let c = match scene.intersect_camera(o, d, ray.tmin, ray.tmax) {
                     None => {
@@ -62,7 +62,7 @@ where
                         to_rgb(shade_lanes::<P, S, L>(tracer, &lanes, Depth::default()))
                     }
                     Some(h) => {
-                        let hits = [scene.surface_hit(&h, o, d, Some((ddx, ddy)))];
+                        let hits = [scene.surface_hit(&h, o, d, Some(ray.differential()))];
                         let lanes = Lanes { hits: &hits, dirs: &dirs, active: 1, hit: 1, camera: true };
                         if wants_derivs[hits[0].surface as usize] {
                             to_rgb(shade_lanes::<D, S, L>(tracer, &lanes, Depth::default()))
