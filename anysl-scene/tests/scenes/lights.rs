@@ -11,8 +11,13 @@ use anysl_scene::shaders::ShaderLibrary;
 use anysl_simd::F32x8;
 use std::path::PathBuf;
 
-/// A directory holding the test's light shaders.
+/// A directory holding the test's light shaders (written once: the tests run in parallel).
 fn shader_dir() -> PathBuf {
+    static DIR: std::sync::OnceLock<PathBuf> = std::sync::OnceLock::new();
+    DIR.get_or_init(write_shaders).clone()
+}
+
+fn write_shaders() -> PathBuf {
     let dir = std::env::temp_dir().join(format!("anysl-scene-lights-{}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("temp dir");
     let write = |name: &str, text: &str| std::fs::write(dir.join(name), text).expect("write shader");
