@@ -121,6 +121,7 @@ struct ObjectPart {
     mesh: usize,
     relative: Mat4,
     attrs: Attributes,
+    primvars: ParamList,
 }
 
 /// Where the reader is.
@@ -324,12 +325,14 @@ impl SceneBuilder {
 
     /// The surface shader index for the current attributes (calls with equal parameters
     /// share one).
-    fn surface_index(surfaces: &mut Vec<ShaderCall>, attrs: &Attributes) -> usize {
-        let call = attrs.surface.clone().unwrap_or(ShaderCall {
+    fn surface_index(surfaces: &mut Vec<ShaderCall>, attrs: &Attributes, primvars: &ParamList) -> usize {
+        let mut call = attrs.surface.clone().unwrap_or(ShaderCall {
             name: "defaultsurface".into(),
             params: ParamList::new(),
+            primvars: ParamList::new(),
             loc: None,
         });
+        call.primvars = primvars.clone();
         if let Some(k) = surfaces.iter().position(|s| s.same_as(&call)) {
             return k;
         }
@@ -337,8 +340,8 @@ impl SceneBuilder {
         surfaces.len() - 1
     }
 
-    fn place(&mut self, mesh: usize, transform: Mat4, attrs: &Attributes) {
-        let surface = Self::surface_index(&mut self.surfaces, attrs);
+    fn place(&mut self, mesh: usize, transform: Mat4, attrs: &Attributes, primvars: &ParamList) {
+        let surface = Self::surface_index(&mut self.surfaces, attrs, primvars);
         let mut inst = Instance::new(mesh, surface, transform);
         inst.color = attrs.color;
         inst.opacity = attrs.opacity;
@@ -371,7 +374,12 @@ impl SceneBuilder {
     }
 
     /// Adds a tessellated primitive under the current transform and attributes.
-    fn add(&mut self, result: Result<Tessellation, geom::GeomError>, what: &str) -> Result<(), BuildError> {
+    fn add(
+        &mut self,
+        result: Result<Tessellation, geom::GeomError>,
+        what: &str,
+        params: &ParamList,
+    ) -> Result<(), BuildError> {
         if self.block != Block::World {
             return Err(BuildError::error(format!("{what} outside WorldBegin/WorldEnd")));
         }
@@ -423,10 +431,11 @@ impl SceneBuilder {
                     mesh: index,
                     relative: base.inverse() * transform,
                     attrs: self.attrs.clone(),
+                    primvars: ShaderCall::binding_primvars(params),
                 }),
                 None => {
                     let attrs = self.attrs.clone();
-                    self.place(index, transform, &attrs);
+                    self.place(index, transform, &attrs, &ShaderCall::binding_primvars(params));
                 }
             }
         }
@@ -600,7 +609,7 @@ impl RibBuilder for SceneBuilder {
             return Err(BuildError::error(format!("ObjectInstance {handle}: no object of that handle")));
         };
         for part in parts {
-            self.place(part.mesh, self.ctm * part.relative, &part.attrs);
+            self.place(part.mesh, self.ctm * part.relative, &part.attrs, &part.primvars);
         }
         ok!()
     }
@@ -841,7 +850,12 @@ impl RibBuilder for SceneBuilder {
 
     fn light_source(&mut self, loc: &Loc, name: &str, handle: &Handle, params: &ParamList) -> Result<(), BuildError> {
         self.lights.push(LightCall {
-            shader: ShaderCall { name: name.to_string(), params: params.clone(), loc: Some(loc.clone()) },
+            shader: ShaderCall {
+                name: name.to_string(),
+                params: params.clone(),
+                primvars: ParamList::new(),
+                loc: Some(loc.clone()),
+            },
             transform: self.ctm,
         });
         self.light_used.push(false);
@@ -863,8 +877,12 @@ impl RibBuilder for SceneBuilder {
     }
 
     fn surface(&mut self, loc: &Loc, name: &str, params: &ParamList) -> Result<(), BuildError> {
-        self.attrs.surface =
-            Some(ShaderCall { name: name.to_string(), params: params.clone(), loc: Some(loc.clone()) });
+        self.attrs.surface = Some(ShaderCall {
+            name: name.to_string(),
+            params: params.clone(),
+            primvars: ParamList::new(),
+            loc: Some(loc.clone()),
+        });
         self.attrs.shader_space = self.current_object_to_world();
         ok!()
     }
@@ -993,12 +1011,12 @@ impl RibBuilder for SceneBuilder {
 
     fn polygon(&mut self, _loc: &Loc, params: &ParamList) -> Result<(), BuildError> {
         let d = self.tess_detail();
-        self.add(geom::polygon(params, &d), "Polygon")
+        self.add(geom::polygon(params, &d), "Polygon", params)
     }
 
     fn general_polygon(&mut self, _loc: &Loc, nverts: &[i32], params: &ParamList) -> Result<(), BuildError> {
         let d = self.tess_detail();
-        self.add(geom::general_polygon(nverts, params, &d), "GeneralPolygon")
+        self.add(geom::general_polygon(nverts, params, &d), "GeneralPolygon", params)
     }
 
     fn points_polygons(
@@ -1009,7 +1027,7 @@ impl RibBuilder for SceneBuilder {
         params: &ParamList,
     ) -> Result<(), BuildError> {
         let d = self.tess_detail();
-        self.add(geom::points_polygons(nverts, verts, params, &d), "PointsPolygons")
+        self.add(geom::points_polygons(nverts, verts, params, &d), "PointsPolygons", params)
     }
 
     fn points_general_polygons(
@@ -1021,12 +1039,12 @@ impl RibBuilder for SceneBuilder {
         params: &ParamList,
     ) -> Result<(), BuildError> {
         let d = self.tess_detail();
-        self.add(geom::points_general_polygons(nloops, nverts, verts, params, &d), "PointsGeneralPolygons")
+        self.add(geom::points_general_polygons(nloops, nverts, verts, params, &d), "PointsGeneralPolygons", params)
     }
 
     fn patch(&mut self, _loc: &Loc, kind: &str, params: &ParamList) -> Result<(), BuildError> {
         let (d, basis) = (self.tess_detail(), self.patch_basis()?);
-        self.add(geom::patch(kind, &basis, params, &d), "Patch")
+        self.add(geom::patch(kind, &basis, params, &d), "Patch", params)
     }
 
     fn patch_mesh(
@@ -1040,7 +1058,7 @@ impl RibBuilder for SceneBuilder {
         params: &ParamList,
     ) -> Result<(), BuildError> {
         let (d, basis) = (self.tess_detail(), self.patch_basis()?);
-        self.add(geom::patch_mesh(kind, nu, uwrap, nv, vwrap, &basis, params, &d), "PatchMesh")
+        self.add(geom::patch_mesh(kind, nu, uwrap, nv, vwrap, &basis, params, &d), "PatchMesh", params)
     }
 
     fn nu_patch(
@@ -1060,7 +1078,7 @@ impl RibBuilder for SceneBuilder {
     ) -> Result<(), BuildError> {
         let d = self.tess_detail();
         let t = geom::nu_patch(nu, uorder, uknot, umin, umax, nv, vorder, vknot, vmin, vmax, params, &d);
-        self.add(t, "NuPatch")
+        self.add(t, "NuPatch", params)
     }
 
     fn trim_curve(
@@ -1089,7 +1107,7 @@ impl RibBuilder for SceneBuilder {
         params: &ParamList,
     ) -> Result<(), BuildError> {
         let d = self.tess_detail();
-        self.add(geom::sphere(radius, zmin, zmax, thetamax, params, &d), "Sphere")
+        self.add(geom::sphere(radius, zmin, zmax, thetamax, params, &d), "Sphere", params)
     }
 
     fn cone(
@@ -1101,7 +1119,7 @@ impl RibBuilder for SceneBuilder {
         params: &ParamList,
     ) -> Result<(), BuildError> {
         let d = self.tess_detail();
-        self.add(geom::cone(height, radius, thetamax, params, &d), "Cone")
+        self.add(geom::cone(height, radius, thetamax, params, &d), "Cone", params)
     }
 
     fn cylinder(
@@ -1114,7 +1132,7 @@ impl RibBuilder for SceneBuilder {
         params: &ParamList,
     ) -> Result<(), BuildError> {
         let d = self.tess_detail();
-        self.add(geom::cylinder(radius, zmin, zmax, thetamax, params, &d), "Cylinder")
+        self.add(geom::cylinder(radius, zmin, zmax, thetamax, params, &d), "Cylinder", params)
     }
 
     fn hyperboloid(
@@ -1126,7 +1144,7 @@ impl RibBuilder for SceneBuilder {
         params: &ParamList,
     ) -> Result<(), BuildError> {
         let d = self.tess_detail();
-        self.add(geom::hyperboloid(*point1, *point2, thetamax, params, &d), "Hyperboloid")
+        self.add(geom::hyperboloid(*point1, *point2, thetamax, params, &d), "Hyperboloid", params)
     }
 
     fn paraboloid(
@@ -1139,7 +1157,7 @@ impl RibBuilder for SceneBuilder {
         params: &ParamList,
     ) -> Result<(), BuildError> {
         let d = self.tess_detail();
-        self.add(geom::paraboloid(rmax, zmin, zmax, thetamax, params, &d), "Paraboloid")
+        self.add(geom::paraboloid(rmax, zmin, zmax, thetamax, params, &d), "Paraboloid", params)
     }
 
     fn disk(
@@ -1151,7 +1169,7 @@ impl RibBuilder for SceneBuilder {
         params: &ParamList,
     ) -> Result<(), BuildError> {
         let d = self.tess_detail();
-        self.add(geom::disk(height, radius, thetamax, params, &d), "Disk")
+        self.add(geom::disk(height, radius, thetamax, params, &d), "Disk", params)
     }
 
     fn torus(
@@ -1165,14 +1183,14 @@ impl RibBuilder for SceneBuilder {
         params: &ParamList,
     ) -> Result<(), BuildError> {
         let d = self.tess_detail();
-        self.add(geom::torus(major_radius, minor_radius, phimin, phimax, thetamax, params, &d), "Torus")
+        self.add(geom::torus(major_radius, minor_radius, phimin, phimax, thetamax, params, &d), "Torus", params)
     }
 
-    fn geometry(&mut self, _loc: &Loc, kind: &str, _params: &ParamList) -> Result<(), BuildError> {
+    fn geometry(&mut self, _loc: &Loc, kind: &str, params: &ParamList) -> Result<(), BuildError> {
         match kind {
             "teapot" => {
                 let d = self.tess_detail();
-                self.add(Ok(geom::teapot(&d)), "Geometry \"teapot\"")
+                self.add(Ok(geom::teapot(&d)), "Geometry \"teapot\"", params)
             }
             other => Err(BuildError::warning(format!("Geometry \"{other}\" is not known (\"teapot\" is)"))),
         }

@@ -253,3 +253,31 @@ fn a_wrong_parameter_warns_and_the_rest_renders() {
     assert!(fs.warnings[0].contains("\"Kx\"") && fs.warnings[0].contains("plastic"), "{}", fs.warnings[0]);
     assert!(fs.warnings[1].contains("string Ks") && fs.warnings[1].contains("float Ks"), "{}", fs.warnings[1]);
 }
+
+/// A primitive variable of one value named like a shader parameter sets that parameter for
+/// the primitive (over the `Surface` list); other primitive variables are no warning.
+#[test]
+fn a_constant_primitive_variable_binds_to_the_shader_parameter() {
+    let scene = |surface: &str, prim: &str| {
+        format!(
+            "Format 16 16 1 {ONE_SAMPLE} Projection \"perspective\" \"fov\" 30\n\
+             WorldBegin LightSource \"distantlight\" 1 \"from\" [0 0 0] \"to\" [0 0 1]\n\
+             Surface {surface} Translate 0 0 5 Sphere 1 -1 1 360 {prim} WorldEnd"
+        )
+    };
+    let bound = scene("\"matte\" \"Kd\" 0.9", "\"constant float Kd\" [0.3] \"constant float notashaderparam\" [7]");
+    let given = scene("\"matte\" \"Kd\" 0.3", "");
+    let (_, a) = render(&bound);
+    let (_, b) = render(&given);
+    let (_, c) = render(&scene("\"matte\" \"Kd\" 0.9", ""));
+    assert!(a[8 * 16 + 8][0] > 0.2, "{:?}", a[8 * 16 + 8]);
+    assert_eq!(a, b);
+    assert_ne!(a, c);
+    let frame = frames(&bound).remove(0);
+    let mut surfaces = Surfaces::interpreter(ShaderLibrary::new(Vec::new(), Vec::new()));
+    let fs = frame_scene(&frame, &mut surfaces).expect("builds");
+    assert!(fs.warnings.is_empty(), "{:?}", fs.warnings);
+    // A variable with a value per vertex does not bind (it would vary over the surface).
+    let (_, d) = render(&scene("\"matte\" \"Kd\" 0.9", "\"varying float Kd\" [0.3 0.3 0.3 0.3]"));
+    assert_eq!(d, c);
+}
