@@ -21,3 +21,4 @@ pub mod geom;
 pub mod lights;
 pub mod render;
 pub mod shaders;
+pub mod surface;

@@ -22,6 +22,7 @@ use crate::build::{Film, FrameDesc, ShaderCall};
 use crate::film::{reconstruct, SampleWindow};
 use crate::lights::{scene_light, SceneLight};
 use crate::shaders::{apply_params, ShaderLibrary};
+use crate::surface::SceneSurface;
 use anysl_core::{Matrix4, Spaces, SurfaceShader};
 use anysl_renderers::Projection;
 use anysl_renderers::{Camera, Image, Scene};
@@ -102,7 +103,7 @@ impl Surfaces<InterpShader> {
 /// them.
 pub struct FrameScene<S> {
     /// The renderer scene; its camera renders one pixel per film sample.
-    pub scene: Scene<S, SceneLight>,
+    pub scene: Scene<SceneSurface<S>, SceneLight>,
     /// The samples' window.
     pub window: SampleWindow,
     /// Warnings (parameters that do not fit, unsupported lights).
@@ -121,10 +122,23 @@ pub fn frame_scene<S: SurfaceShader + Clone>(
 ) -> Result<FrameScene<S>, String> {
     let mut warnings = Vec::new();
     let mut shaders = Vec::with_capacity(frame.surfaces.len());
-    for call in &frame.surfaces {
-        let (s, w) = surfaces.for_call(call)?;
+    // Per surface slot: whether its shaders name a coordinate system.
+    let mut spacey = Vec::with_capacity(frame.surfaces.len());
+    for (k, call) in frame.surfaces.iter().enumerate() {
+        let (surface, w) = surfaces.for_call(call)?;
         warnings.extend(w);
-        shaders.push(s);
+        let mut uses = surfaces.uses_spaces.get(&call.name).copied().unwrap_or(false);
+        let displacement = match frame.displacements.get(k).and_then(Option::as_ref) {
+            Some(d) => {
+                let (shader, w, names_space) = displacement_shader(d, &mut surfaces.library)?;
+                warnings.extend(w);
+                uses |= names_space;
+                Some(shader)
+            }
+            None => None,
+        };
+        spacey.push(uses);
+        shaders.push(SceneSurface { surface, displacement });
     }
     let mut lights = Vec::new();
     // Frame light k → its index in `lights` (none when it is left out).
@@ -144,13 +158,14 @@ pub fn frame_scene<S: SurfaceShader + Clone>(
     }
     if shaders.is_empty() {
         // A world without primitives still needs a shader slot.
-        shaders.push(surfaces.instance("defaultsurface")?);
+        shaders.push(SceneSurface { surface: surfaces.instance("defaultsurface")?, displacement: None });
+        spacey.push(false);
     }
     let window = SampleWindow::of(&frame.film);
     let (w, h) = window.sample_size();
     let camera = Camera::from_spec(&window.camera(&frame.camera, &frame.film), w, h);
     let mut instances = frame.instances.clone();
-    let mut surface_spaces = place_spaces(frame, &surfaces.uses_spaces, &mut instances, &mut shaders);
+    let mut surface_spaces = place_spaces(frame, &spacey, &mut instances, &mut shaders);
     let surface_lights = place_lights(frame, &light_of, &lights, &mut instances, &mut shaders, &mut surface_spaces);
     let mut scene = Scene::new(camera, &frame.meshes, instances, shaders, lights).map_err(|e| e.to_string())?;
     scene.surface_spaces = surface_spaces;
@@ -158,6 +173,28 @@ pub fn frame_scene<S: SurfaceShader + Clone>(
     // RenderMan has no sky: a ray that meets nothing (`trace`, a path tracer's bounce) sees black.
     scene.sky = anysl_renderers::Sky { horizon: [0.0; 3], zenith: [0.0; 3], visible_to_camera: false };
     Ok(FrameScene { scene, window, warnings })
+}
+
+/// The displacement shader of `call` (run by the interpreter), its parameter warnings, and
+/// whether it names a coordinate system.
+fn displacement_shader(
+    call: &ShaderCall,
+    library: &mut ShaderLibrary,
+) -> Result<(InterpShader, Vec<String>, bool), String> {
+    let name = &call.name;
+    let module = library.module(name)?;
+    if module.kind != anysl_rsl::ir::ShaderKind::Displacement {
+        return Err(format!(
+            "shader \"{name}\" is a {} shader; Displacement needs a displacement shader",
+            format!("{:?}", module.kind).to_lowercase()
+        ));
+    }
+    let names_space = module.uses_spaces();
+    let module = anysl_rsl::passes::optimize(module, &anysl_rsl::passes::PassOptions::default());
+    let program = Program::new(module).map_err(|e| format!("displacement shader \"{name}\": {e}"))?;
+    let mut shader = InterpShader::new(Arc::new(program));
+    let warnings = apply_params(&mut shader, call);
+    Ok((shader, warnings, names_space))
 }
 
 /// A glam matrix (column vectors) as an RSL one (row vectors, row by row).
@@ -279,13 +316,10 @@ fn place_lights<S: Clone, L: Clone>(
 /// slot and an empty table (never read).
 fn place_spaces<S: Clone>(
     frame: &FrameDesc,
-    uses: &HashMap<String, bool>,
+    spacey: &[bool],
     instances: &mut [anysl_renderers::Instance],
     shaders: &mut Vec<S>,
 ) -> Vec<Spaces> {
-    let names: Vec<&str> = frame.surfaces.iter().map(|c| c.name.as_str()).collect();
-    let spacey: Vec<bool> =
-        (0..shaders.len()).map(|k| names.get(k).is_some_and(|n| uses.get(*n).copied().unwrap_or(false))).collect();
     let mut out = vec![Spaces::default(); shaders.len()];
     if !spacey.iter().any(|&b| b) {
         return out;

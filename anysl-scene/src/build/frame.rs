@@ -28,6 +28,8 @@ pub struct FrameDesc {
     pub shader_spaces: Vec<Mat4>,
     /// The distinct surface shader calls (name + parameters).
     pub surfaces: Vec<ShaderCall>,
+    /// For each of `surfaces`, the displacement shader run before it (`Displacement`), if any.
+    pub displacements: Vec<Option<ShaderCall>>,
     /// The light sources that illuminate some primitive, in the order declared.
     pub lights: Vec<LightCall>,
     /// Per instance, the lights that illuminate it: an index into `light_lists`.

@@ -88,6 +88,8 @@ struct Attributes {
     /// Orientation "inside" (after `ReverseOrientation`s), relative to the current transform.
     inside: bool,
     surface: Option<ShaderCall>,
+    /// The displacement shader (`Displacement`).
+    displacement: Option<ShaderCall>,
     /// Shader space: the object-to-world transform current at `Surface`.
     shader_space: Mat4,
     basis: (Basis, i32, Basis, i32),
@@ -106,6 +108,7 @@ impl Default for Attributes {
             two_sided: true,
             inside: false,
             surface: None,
+            displacement: None,
             shader_space: Mat4::IDENTITY,
             basis: (bezier.clone(), 3, bezier, 3),
             st: None,
@@ -147,6 +150,7 @@ pub struct SceneBuilder {
     instances: Vec<Instance>,
     shader_spaces: Vec<Mat4>,
     surfaces: Vec<ShaderCall>,
+    displacements: Vec<Option<ShaderCall>>,
     lights: Vec<LightCall>,
     light_used: Vec<bool>,
     /// Per instance, its light list (an index into `light_lists`).
@@ -227,6 +231,7 @@ impl SceneBuilder {
             instances: Vec::new(),
             shader_spaces: Vec::new(),
             surfaces: Vec::new(),
+            displacements: Vec::new(),
             lights: Vec::new(),
             light_used: Vec::new(),
             instance_lights: Vec::new(),
@@ -325,7 +330,12 @@ impl SceneBuilder {
 
     /// The surface shader index for the current attributes (calls with equal parameters
     /// share one).
-    fn surface_index(surfaces: &mut Vec<ShaderCall>, attrs: &Attributes, primvars: &ParamList) -> usize {
+    fn surface_index(
+        surfaces: &mut Vec<ShaderCall>,
+        displacements: &mut Vec<Option<ShaderCall>>,
+        attrs: &Attributes,
+        primvars: &ParamList,
+    ) -> usize {
         let mut call = attrs.surface.clone().unwrap_or(ShaderCall {
             name: "defaultsurface".into(),
             params: ParamList::new(),
@@ -333,15 +343,23 @@ impl SceneBuilder {
             loc: None,
         });
         call.primvars = primvars.clone();
-        if let Some(k) = surfaces.iter().position(|s| s.same_as(&call)) {
+        let same_displacement = |d: &Option<ShaderCall>| match (d, &attrs.displacement) {
+            (None, None) => true,
+            (Some(a), Some(b)) => a.same_as(b),
+            _ => false,
+        };
+        if let Some(k) =
+            surfaces.iter().zip(displacements.iter()).position(|(s, d)| s.same_as(&call) && same_displacement(d))
+        {
             return k;
         }
         surfaces.push(call);
+        displacements.push(attrs.displacement.clone());
         surfaces.len() - 1
     }
 
     fn place(&mut self, mesh: usize, transform: Mat4, attrs: &Attributes, primvars: &ParamList) {
-        let surface = Self::surface_index(&mut self.surfaces, attrs, primvars);
+        let surface = Self::surface_index(&mut self.surfaces, &mut self.displacements, attrs, primvars);
         let mut inst = Instance::new(mesh, surface, transform);
         inst.color = attrs.color;
         inst.opacity = attrs.opacity;
@@ -531,6 +549,7 @@ impl RibBuilder for SceneBuilder {
             instances: std::mem::take(&mut self.instances),
             shader_spaces: std::mem::take(&mut self.shader_spaces),
             surfaces: std::mem::take(&mut self.surfaces),
+            displacements: std::mem::take(&mut self.displacements),
             lights,
             instance_lights: std::mem::take(&mut self.instance_lights),
             light_lists,
@@ -884,6 +903,16 @@ impl RibBuilder for SceneBuilder {
             loc: Some(loc.clone()),
         });
         self.attrs.shader_space = self.current_object_to_world();
+        ok!()
+    }
+
+    fn displacement(&mut self, loc: &Loc, name: &str, params: &ParamList) -> Result<(), BuildError> {
+        self.attrs.displacement = (name != "null").then(|| ShaderCall {
+            name: name.to_string(),
+            params: params.clone(),
+            primvars: ParamList::new(),
+            loc: Some(loc.clone()),
+        });
         ok!()
     }
 

@@ -3,6 +3,7 @@
 //!
 //! `cargo test -p anysl-scene --test scenes spaces::` runs one module.
 
+mod displacement;
 mod examples;
 mod known_answers;
 mod lights;
