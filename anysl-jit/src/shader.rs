@@ -1,5 +1,5 @@
-//! [`JitShader`]: a JIT-compiled `.sl` surface shader behind the same [`SurfaceShader`]
-//! boundary as every other shader.
+//! [`JitShader`]: a JIT-compiled `.sl` surface or displacement shader behind the same
+//! [`SurfaceShader`] / [`DisplacementShader`] boundary as every other shader.
 
 use crate::abi::JitFloat;
 use crate::abi::{GLOBAL_ORDER, GLOBAL_VALUES};
@@ -410,6 +410,49 @@ impl JitShader {
         // the return value, which has the layout of its output buffer.
         assert!(crate::abi::output_layout_is_buffer::<G>(), "SurfaceOutput layout differs from the JIT's");
         let mut out = std::mem::MaybeUninit::<SurfaceOutput<G>>::uninit();
+        // SAFETY: a surface shader's code writes `Ci` and `Oi`: six values of `G`, `STRIDE`
+        // floats apart (`output_layout_is_buffer`), the size and alignment of `SurfaceOutput<G>`.
+        unsafe { self.invoke::<F, C, G>(cs, ctx, e, out.as_mut_ptr().cast()) };
+        // Read back component by component with `G::read` (one load per packet, the width
+        // of the compiled code's stores), not as a whole: a copy of the whole struct moves it
+        // with wider loads than the stores that wrote it, and store forwarding fails on each.
+        // SAFETY: the compiled code wrote all six components; F and G are the same type.
+        let o = out.as_ptr().cast::<f32>();
+        let rd = |k: usize| cast::<G, F>(unsafe { G::read(o.add(k * G::STRIDE)) });
+        SurfaceOutput { Ci: Color::new(rd(0), rd(1), rd(2)), Oi: Color::new(rd(3), rd(4), rd(5)) }
+    }
+
+    /// A displacement shader's run: its `P` and `N` (the third and fourth outputs).
+    fn run_displace<F: ShadingFloat, C: ShadingContext<F>, G: JitFloat>(
+        &self,
+        cs: &CompiledShader,
+        ctx: &mut C,
+        e: &Exec<F>,
+    ) -> (Vec3<F>, Vec3<F>) {
+        assert!(crate::abi::output_layout_is_buffer::<G>(), "SurfaceOutput layout differs from the JIT's");
+        // Two `SurfaceOutput<G>` are the twelve values `Ci`, `Oi`, `P`, `N` (abi::OUTPUT_ORDER).
+        let mut out = std::mem::MaybeUninit::<[SurfaceOutput<G>; 2]>::uninit();
+        // SAFETY: a displacement shader's code writes the four outputs: twelve values of `G`,
+        // `STRIDE` floats apart, the size and alignment of two `SurfaceOutput<G>`.
+        unsafe { self.invoke::<F, C, G>(cs, ctx, e, out.as_mut_ptr().cast()) };
+        let o = out.as_ptr().cast::<f32>();
+        // SAFETY: the compiled code wrote all twelve values; F and G are the same type.
+        let rd = |k: usize| cast::<G, F>(unsafe { G::read(o.add(k * G::STRIDE)) });
+        (Vec3::new(rd(6), rd(7), rd(8)), Vec3::new(rd(9), rd(10), rd(11)))
+    }
+
+    /// Calls the compiled code of `cs` on the packet of `ctx` under `e`'s mask.
+    ///
+    /// # Safety
+    /// `out` has room for every output value `cs` writes, aligned for `G`; `F` is `G`.
+    #[inline]
+    unsafe fn invoke<F: ShadingFloat, C: ShadingContext<F>, G: JitFloat>(
+        &self,
+        cs: &CompiledShader,
+        ctx: &mut C,
+        e: &Exec<F>,
+        out: *mut f32,
+    ) {
         let mut mbuf = [0u32; crate::abi::MAX_LANES];
         // The compiled code reads the globals in place, at the offsets of `Globals<F>`'s
         // layout (`abi::GlobalsLayout`), while the host callbacks hold the context mutably:
@@ -419,26 +462,11 @@ impl JitShader {
         unsafe { G::write_mask(cast::<F::Mask, G::Mask>(e.mask()), mbuf.as_mut_ptr()) };
         let host = HostTable::<F, C, G>::table();
         let mut hc = HostCtx::new(ctx);
-        // SAFETY: the buffers have the layout the compiled code expects; `ctx` is a `C`, which
-        // is what the host table's shims take.
+        // SAFETY: the buffers have the layout the compiled code expects (the caller's
+        // promise for `out`); `ctx` is a `C`, which is what the host table's shims take.
         unsafe {
-            (cs.f)(
-                gbuf,
-                out.as_mut_ptr().cast(),
-                mbuf.as_ptr(),
-                (&mut hc as *mut HostCtx<F, C>).cast(),
-                host,
-                self.param_block.as_ptr(),
-            );
+            (cs.f)(gbuf, out, mbuf.as_ptr(), (&mut hc as *mut HostCtx<F, C>).cast(), host, self.param_block.as_ptr());
         }
-        // Read back component by component with `G::read` (one load per packet, the width
-        // of the compiled code's stores), not as a whole: a copy of the whole struct moves it
-        // with wider loads than the stores that wrote it, and store forwarding fails on each.
-        // SAFETY: the compiled code wrote all six components, `STRIDE` floats apart
-        // (`output_layout_is_buffer`); F and G are the same type.
-        let o = out.as_ptr().cast::<f32>();
-        let rd = |k: usize| cast::<G, F>(unsafe { G::read(o.add(k * G::STRIDE)) });
-        SurfaceOutput { Ci: Color::new(rd(0), rd(1), rd(2)), Oi: Color::new(rd(3), rd(4), rd(5)) }
     }
 }
 
@@ -512,5 +540,22 @@ impl SurfaceShader for JitShader {
             }
         }
         self.interp.shade(ctx, e)
+    }
+}
+
+impl DisplacementShader for JitShader {
+    /// The compiled displacement (`P`, `N` as it leaves them) for the variant of `F`; the
+    /// interpreter for other float types.
+    fn displace<F: ShadingFloat, C: ShadingContext<F>>(&self, ctx: &mut C, e: &mut Exec<F>) -> (Vec3<F>, Vec3<F>) {
+        if let Some(v) = variant_of::<F>() {
+            if let Ok(cs) = self.variant_ref(v) {
+                return_as_variant!(v, F, |G| self.run_displace::<F, C, G>(cs, ctx, e));
+                unreachable!(
+                    "variant_of::<{}>() named {v:?}, a type of other lanes or size",
+                    core::any::type_name::<F>()
+                );
+            }
+        }
+        self.interp.displace(ctx, e)
     }
 }

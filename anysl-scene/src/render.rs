@@ -23,7 +23,7 @@ use crate::film::{reconstruct, SampleWindow};
 use crate::lights::{scene_light, SceneLight};
 use crate::shaders::{apply_params, ShaderLibrary};
 use crate::surface::SceneSurface;
-use anysl_core::{Matrix4, Spaces, SurfaceShader};
+use anysl_core::{DisplacementShader, Matrix4, Spaces, SurfaceShader};
 use anysl_renderers::Projection;
 use anysl_renderers::{Camera, Image, Scene};
 use anysl_rsl::back::interp::{InterpShader, Program};
@@ -44,7 +44,7 @@ pub struct Surfaces<S> {
     kept: Vec<(ShaderCall, S)>,
 }
 
-impl<S: SurfaceShader + Clone> Surfaces<S> {
+impl<S: SurfaceShader + DisplacementShader + Clone> Surfaces<S> {
     /// Shaders made by `make` from each shader's compiled module.
     pub fn new(library: ShaderLibrary, make: impl FnMut(anysl_rsl::ir::Module) -> Result<S, String> + 'static) -> Self {
         Self { library, make: Box::new(make), cache: HashMap::new(), uses_spaces: HashMap::new(), kept: Vec::new() }
@@ -70,6 +70,24 @@ impl<S: SurfaceShader + Clone> Surfaces<S> {
         let mut s = self.instance(&call.name)?;
         let warnings = apply_params(&mut s, call);
         Ok((s, warnings))
+    }
+
+    /// The displacement shader for `call` with its parameters set, the warnings that gave,
+    /// and whether it names a coordinate system.
+    ///
+    /// # Errors
+    /// The shader cannot be found or compiled, or is not a displacement shader.
+    fn displacement(&mut self, call: &ShaderCall) -> Result<(S, Vec<String>, bool), String> {
+        let name = &call.name;
+        let kind = self.library.module(name)?.kind;
+        if kind != anysl_rsl::ir::ShaderKind::Displacement {
+            return Err(format!(
+                "shader \"{name}\" is a {} shader; Displacement needs a displacement shader",
+                format!("{kind:?}").to_lowercase()
+            ));
+        }
+        let (shader, warnings) = self.for_call(call)?;
+        Ok((shader, warnings, self.uses_spaces.get(name).copied().unwrap_or(false)))
     }
 
     /// A fresh instance of shader `name` with its defaults.
@@ -116,7 +134,7 @@ pub struct FrameScene<S> {
 /// A surface shader that cannot be found or compiled, a light shader that is found but does not
 /// compile or is not a light shader, or inconsistent geometry. (A light shader that is not
 /// found is left out with a warning.)
-pub fn frame_scene<S: SurfaceShader + Clone>(
+pub fn frame_scene<S: SurfaceShader + DisplacementShader + Clone>(
     frame: &FrameDesc,
     surfaces: &mut Surfaces<S>,
 ) -> Result<FrameScene<S>, String> {
@@ -130,7 +148,7 @@ pub fn frame_scene<S: SurfaceShader + Clone>(
         let mut uses = surfaces.uses_spaces.get(&call.name).copied().unwrap_or(false);
         let displacement = match frame.displacements.get(k).and_then(Option::as_ref) {
             Some(d) => {
-                let (shader, w, names_space) = displacement_shader(d, &mut surfaces.library)?;
+                let (shader, w, names_space) = surfaces.displacement(d)?;
                 warnings.extend(w);
                 uses |= names_space;
                 Some(shader)
@@ -173,28 +191,6 @@ pub fn frame_scene<S: SurfaceShader + Clone>(
     // RenderMan has no sky: a ray that meets nothing (`trace`, a path tracer's bounce) sees black.
     scene.sky = anysl_renderers::Sky { horizon: [0.0; 3], zenith: [0.0; 3], visible_to_camera: false };
     Ok(FrameScene { scene, window, warnings })
-}
-
-/// The displacement shader of `call` (run by the interpreter), its parameter warnings, and
-/// whether it names a coordinate system.
-fn displacement_shader(
-    call: &ShaderCall,
-    library: &mut ShaderLibrary,
-) -> Result<(InterpShader, Vec<String>, bool), String> {
-    let name = &call.name;
-    let module = library.module(name)?;
-    if module.kind != anysl_rsl::ir::ShaderKind::Displacement {
-        return Err(format!(
-            "shader \"{name}\" is a {} shader; Displacement needs a displacement shader",
-            format!("{:?}", module.kind).to_lowercase()
-        ));
-    }
-    let names_space = module.uses_spaces();
-    let module = anysl_rsl::passes::optimize(module, &anysl_rsl::passes::PassOptions::default());
-    let program = Program::new(module).map_err(|e| format!("displacement shader \"{name}\": {e}"))?;
-    let mut shader = InterpShader::new(Arc::new(program));
-    let warnings = apply_params(&mut shader, call);
-    Ok((shader, warnings, names_space))
 }
 
 /// A glam matrix (column vectors) as an RSL one (row vectors, row by row).

@@ -1,5 +1,6 @@
 //! A surface of a RIB scene: its surface shader and, when the attributes name one, the
-//! displacement shader run before it at every shaded point.
+//! displacement shader run before it at every shaded point, both from the same back end (the
+//! JIT's compiled code, or the interpreter).
 //!
 //! A ray tracer that does not re-tessellate displaces by **bump mapping**: the displacement
 //! shader runs on the true hit point; the surface shader then sees the normal it computed (`N`
@@ -11,15 +12,14 @@ use anysl_core::{
     Color, DisplacementShader, Exec, GlobalSet, Globals, LightData, LightQuery, ParamError, ParamValue, Shader,
     ShaderMeta, ShadingContext, ShadingFloat, Spaces, SurfaceOutput, SurfaceShader, Vec3,
 };
-use anysl_rsl::back::interp::InterpShader;
 
-/// A surface shader with an optional displacement shader (run by the interpreter).
+/// A surface shader with an optional displacement shader of the same back end.
 #[derive(Clone, Debug)]
 pub struct SceneSurface<S> {
     /// The surface shader.
     pub surface: S,
     /// The displacement shader, if the attributes name one.
-    pub displacement: Option<InterpShader>,
+    pub displacement: Option<S>,
 }
 
 impl<S: Shader> Shader for SceneSurface<S> {
@@ -37,7 +37,7 @@ impl<S: Shader> Shader for SceneSurface<S> {
     }
 }
 
-impl<S: SurfaceShader> SurfaceShader for SceneSurface<S> {
+impl<S: SurfaceShader + DisplacementShader> SurfaceShader for SceneSurface<S> {
     fn globals_read(&self) -> GlobalSet {
         match &self.displacement {
             Some(d) => self.surface.globals_read() | d.globals_read(),

@@ -2,11 +2,14 @@
 
 use anysl_ad::Dual;
 use anysl_core::points::{abs_error_stats, shade_points, shade_points_f64, PointSet, ShadeOut};
+use anysl_core::prelude::*;
+use anysl_core::shader::{ParamError, ParamValue, ShaderMeta};
 use anysl_jit::check::{ABS_FLOOR, MAX_ULPS};
 use anysl_jit::{compile_with, ir_passes, CompileStats, JitOptions, JitShader, Variant};
 use anysl_rsl::back::interp::{InterpShader, Program};
 use anysl_rsl::ir::ShaderKind;
 use anysl_rsl::CompileOptions;
+use anysl_scene::surface::SceneSurface;
 use anysl_shaders::{table1_lights, Light, Surface};
 use anysl_simd::{F32x16, F32x4, F32x8};
 use serde::Serialize;
@@ -182,7 +185,8 @@ pub struct JitBenchRow {
     /// Table-1 shader name.
     pub shader: String,
     /// `jit-f32`, `jit-x4`, `jit-x8`, `jit-x16`, `aot-f32`, `aot-f32x8`, `interp`, `jit-x8-points`
-    /// (the points entry, `JitShader::shade_points`).
+    /// (the points entry, `JitShader::shade_points`); `jit-dual-x8`, `jit-dual-x8-displacement`,
+    /// `jit-dual-x8-displaced` (a displacement run before the surface, and each alone).
     pub backend: String,
     /// Median cold compile time, parse → machine code (0 for aot).
     pub compile_ms: f64,
@@ -242,6 +246,119 @@ pub fn cold_compile(
     Ok((per_stage.into_iter().map(|(s, v)| (s, median(v))).collect(), last.unwrap_or_default()))
 }
 
+/// A pass over the point set, writing its outputs.
+type Run<'a> = Box<dyn FnMut(&mut ShadeOut<f32>) + 'a>;
+
+/// Times each runner `runs` times, round-robin so drift hits every one alike; returns the
+/// median seconds per pass and each runner's outputs.
+fn time_runners(runners: &mut [(&str, f64, Run<'_>)], points: usize, runs: usize) -> (Vec<f64>, Vec<ShadeOut<f32>>) {
+    let mut outs: Vec<ShadeOut<f32>> = runners.iter().map(|_| ShadeOut::new(points)).collect();
+    let mut times: Vec<Vec<f64>> = vec![Vec::new(); runners.len()];
+    // Each timed sample repeats the pass until it lasts about `SAMPLE_S` (from the warm-up
+    // pass): a single pass over the points takes well under a millisecond for the fast
+    // backends, where timer and scheduler jitter on a shared machine would dominate.
+    let mut reps = vec![1usize; runners.len()];
+    for (k, (_, _, f)) in runners.iter_mut().enumerate() {
+        let t = Instant::now();
+        f(&mut outs[k]);
+        let once = t.elapsed().as_secs_f64().max(1e-7);
+        reps[k] = ((SAMPLE_S / once).ceil() as usize).clamp(1, 10_000);
+    }
+    for _ in 0..runs {
+        for (k, (_, _, f)) in runners.iter_mut().enumerate() {
+            let t = Instant::now();
+            for _ in 0..reps[k] {
+                f(&mut outs[k]);
+            }
+            times[k].push(t.elapsed().as_secs_f64() / reps[k] as f64);
+        }
+    }
+    (times.into_iter().map(median).collect(), outs)
+}
+
+/// The displacement shader of the displacement rows: `scenes/dented.sl` (noise dents along
+/// the normal, the normal left to the renderer: the moved surface's, from the dual-number
+/// derivatives of the moved `P`).
+fn dented_file() -> PathBuf {
+    rsl_dir().join("../../scenes/dented.sl")
+}
+
+/// A displacement shader run as a surface: `Ci` = the displaced `P`, `Oi` = its `N` (the
+/// displacement's cost alone, through the point-set loop).
+#[derive(Clone)]
+struct DisplaceOnly<D>(D);
+
+impl<D: DisplacementShader> Shader for DisplaceOnly<D> {
+    fn meta(&self) -> ShaderMeta {
+        ShaderMeta { uses_derivatives: true, ..self.0.meta() }
+    }
+    fn param(&self, name: &str) -> Option<ParamValue> {
+        self.0.param(name)
+    }
+    fn set_param(&mut self, name: &str, value: &ParamValue) -> Result<(), ParamError> {
+        self.0.set_param(name, value)
+    }
+}
+
+impl<D: DisplacementShader> SurfaceShader for DisplaceOnly<D> {
+    fn shade<F: ShadingFloat, C: ShadingContext<F>>(&self, ctx: &mut C, e: &mut Exec<F>) -> SurfaceOutput<F> {
+        let (p, n) = self.0.displace(ctx, e);
+        SurfaceOutput { Ci: Color::new(p.x, p.y, p.z), Oi: Color::new(n.x, n.y, n.z) }
+    }
+}
+
+/// The rows of a displacement run before the surface at 8 lanes with dual numbers (the
+/// derivatives give the displaced normal): the surface alone (`jit-dual-x8`), the
+/// displacement alone (`jit-dual-x8-displacement`, outputs `P` and `N`) and the two together
+/// (`jit-dual-x8-displaced`, `anysl_scene::surface::SceneSurface`), each against the
+/// interpreter's f64 answer (the surface alone against the f64 reference).
+fn displaced_rows(
+    name: &str,
+    jit: &JitShader,
+    interp: &InterpShader,
+    reference: &ShadeOut<f64>,
+    lights: &[Light],
+    set: &PointSet,
+    opts: &JitBenchOpts,
+) -> Result<Vec<JitBenchRow>, String> {
+    type D8 = Dual<F32x8>;
+    let file = dented_file();
+    let t = Instant::now();
+    let disp = JitShader::from_file(&file, &include_dirs(&file), JitOptions::default()).map_err(|e| e.to_string())?;
+    disp.variant(Variant::DualX8)?;
+    jit.variant(Variant::DualX8)?;
+    let compile_ms = t.elapsed().as_secs_f64() * 1e3;
+    let alone = DisplaceOnly(disp.clone());
+    let both = SceneSurface { surface: jit.clone(), displacement: Some(disp.clone()) };
+    let (ref_alone, ref_both) = {
+        let d = disp.interp().clone();
+        let alone = DisplaceOnly(d.clone());
+        let both = SceneSurface { surface: interp.clone(), displacement: Some(d) };
+        (
+            shade_points_f64::<Dual<f64>, _, Light>(&alone, lights, set),
+            shade_points_f64::<Dual<f64>, _, Light>(&both, lights, set),
+        )
+    };
+    let mut runners: Vec<(&str, f64, Run)> = vec![
+        ("jit-dual-x8", 0.0, Box::new(|o| shade_points::<D8, _, Light>(jit, lights, set, o))),
+        ("jit-dual-x8-displacement", compile_ms, Box::new(|o| shade_points::<D8, _, Light>(&alone, lights, set, o))),
+        ("jit-dual-x8-displaced", compile_ms, Box::new(|o| shade_points::<D8, _, Light>(&both, lights, set, o))),
+    ];
+    let (times, outs) = time_runners(&mut runners, set.len(), opts.runs);
+    let refs = [reference, &ref_alone, &ref_both];
+    Ok(runners
+        .iter()
+        .enumerate()
+        .map(|(k, (b, c, _))| JitBenchRow {
+            shader: name.to_string(),
+            backend: (*b).to_string(),
+            compile_ms: *c,
+            points_per_s: set.len() as f64 / times[k],
+            max_abs_err: abs_error_stats(&outs[k], refs[k]).0,
+        })
+        .collect())
+}
+
 /// Runs `anysl bench jit`.
 pub fn bench(opts: &JitBenchOpts) -> Result<Vec<JitBenchRow>, String> {
     let names: Vec<String> = if opts.shaders.is_empty() {
@@ -288,7 +405,6 @@ pub fn bench(opts: &JitBenchOpts) -> Result<Vec<JitBenchRow>, String> {
         let program = { Program::new(ir_passes(&jit.module, &jit.values, false)).map_err(|e| e.to_string())? };
         let interp = InterpShader::new(Arc::new(program));
         let interp_ms = interp_t.elapsed().as_secs_f64() * 1e3;
-        type Run<'a> = Box<dyn FnMut(&mut ShadeOut<f32>) + 'a>;
         let mut runners: Vec<(&str, f64, Run)> = vec![
             ("jit-f32", compile_ms[0], Box::new(|o| shade_points::<f32, _, Light>(&jit, &lights, &set, o))),
             ("jit-x4", compile_ms[1], Box::new(|o| shade_points::<F32x4, _, Light>(&jit, &lights, &set, o))),
@@ -308,37 +424,18 @@ pub fn bench(opts: &JitBenchOpts) -> Result<Vec<JitBenchRow>, String> {
                 }),
             ),
         ];
-        let mut outs: Vec<ShadeOut<f32>> = runners.iter().map(|_| ShadeOut::new(set.len())).collect();
-        let mut times: Vec<Vec<f64>> = vec![Vec::new(); runners.len()];
-        // Each timed sample repeats the pass until it lasts about `SAMPLE_S` (from the warm-up
-        // pass): a single pass over the points takes well under a millisecond for the fast
-        // backends, where timer and scheduler jitter on a shared machine would dominate.
-        let mut reps = vec![1usize; runners.len()];
-        for (k, (_, _, f)) in runners.iter_mut().enumerate() {
-            let t = Instant::now();
-            f(&mut outs[k]);
-            let once = t.elapsed().as_secs_f64().max(1e-7);
-            reps[k] = ((SAMPLE_S / once).ceil() as usize).clamp(1, 10_000);
-        }
-        // Round-robin timing so drift hits every backend alike.
-        for _ in 0..opts.runs {
-            for (k, (_, _, f)) in runners.iter_mut().enumerate() {
-                let t = Instant::now();
-                for _ in 0..reps[k] {
-                    f(&mut outs[k]);
-                }
-                times[k].push(t.elapsed().as_secs_f64() / reps[k] as f64);
-            }
-        }
+        let (times, outs) = time_runners(&mut runners, set.len(), opts.runs);
         for (k, (b, c, _)) in runners.iter().enumerate() {
             rows.push(JitBenchRow {
                 shader: name.clone(),
                 backend: (*b).to_string(),
                 compile_ms: *c,
-                points_per_s: set.len() as f64 / median(times[k].clone()),
+                points_per_s: set.len() as f64 / times[k],
                 max_abs_err: abs_error_stats(&outs[k], &reference).0,
             });
         }
+        drop(runners);
+        rows.extend(displaced_rows(name, &jit, &interp, &reference, &lights, &set, opts)?);
     }
     Ok(rows)
 }
@@ -347,7 +444,7 @@ pub fn bench(opts: &JitBenchOpts) -> Result<Vec<JitBenchRow>, String> {
 pub fn print_table(rows: &[JitBenchRow]) {
     println!();
     println!(
-        "{:<9} {:<10} {:>11} {:>13} {:>9} {:>12}",
+        "{:<9} {:<24} {:>11} {:>13} {:>9} {:>12}",
         "shader", "backend", "compile ms", "points/s", "vs aot-x8", "max_abs_err"
     );
     let mut ratios = Vec::new();
@@ -358,7 +455,7 @@ pub fn print_table(rows: &[JitBenchRow]) {
             ratios.push(r.points_per_s / base);
         }
         println!(
-            "{:<9} {:<10} {:>11.1} {:>13.3e} {:>8.2}x {:>12.2e}",
+            "{:<9} {:<24} {:>11.1} {:>13.3e} {:>8.2}x {:>12.2e}",
             r.shader,
             r.backend,
             r.compile_ms,
@@ -371,4 +468,27 @@ pub fn print_table(rows: &[JitBenchRow]) {
         let mean = ratios.iter().sum::<f64>() / ratios.len() as f64;
         println!("jit-x8 / aot-f32x8 over {} shaders: mean {mean:.2}x", ratios.len());
     }
+    let displaced = displaced_ratios(rows);
+    if !displaced.is_empty() {
+        let list: Vec<String> = displaced.iter().map(|(s, r)| format!("{s} {r:.2}x")).collect();
+        let mean = displaced.iter().map(|(_, r)| r).sum::<f64>() / displaced.len() as f64;
+        println!(
+            "displacement + surface / (displacement alone + surface alone), jit dual-x8: mean {mean:.2}x ({})",
+            list.join(", ")
+        );
+    }
+}
+
+/// Per shader: the time of the displacement and the surface shaded together over the sum of
+/// their times alone (`jit-dual-x8-displaced` against `jit-dual-x8` + `jit-dual-x8-displacement`).
+#[must_use]
+pub fn displaced_ratios(rows: &[JitBenchRow]) -> Vec<(String, f64)> {
+    let mut out = Vec::new();
+    for r in rows.iter().filter(|r| r.backend == "jit-dual-x8-displaced") {
+        let t = |b: &str| rows.iter().find(|x| x.shader == r.shader && x.backend == b).map(|x| 1.0 / x.points_per_s);
+        if let (Some(s), Some(d)) = (t("jit-dual-x8"), t("jit-dual-x8-displacement")) {
+            out.push((r.shader.clone(), (1.0 / r.points_per_s) / (s + d)));
+        }
+    }
+    out
 }

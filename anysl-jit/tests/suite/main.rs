@@ -3,6 +3,7 @@
 //!
 //! `cargo test -p anysl-jit --test suite points::` runs one module.
 
+mod displacement;
 mod inline_geometry;
 mod inline_math;
 mod light_loops;

@@ -130,8 +130,12 @@ fn visit(
 /// and the texture look-ups, and everything varying they are computed from. Returns true when
 /// any value needs derivatives — only then must a back end run the shader on dual numbers.
 ///
+/// `outputs` are globals whose final values leave the shader with their derivatives (a
+/// displacement shader's `P` and `N`: the renderer takes the moved surface's normal from the
+/// screen derivatives of the moved `P`); what they are computed from is marked too.
+///
 /// Run after [`analyze_uniform`]: uniform values have zero derivatives and are never marked.
-pub fn analyze_derivatives(func: &mut Function) -> bool {
+pub fn analyze_derivatives(func: &mut Function, outputs: &[crate::ir::Global]) -> bool {
     let n = func.insts.len();
     let mut need = vec![false; n];
     let mut slot_need = vec![false; func.slots.len()];
@@ -154,6 +158,14 @@ pub fn analyze_derivatives(func: &mut Function) -> bool {
             stores[slot.0 as usize].push(*value);
         }
     });
+    for &g in outputs {
+        if let Some(s) = func.global_slot(g) {
+            slot_need[s.0 as usize] = true;
+            for v in &stores[s.0 as usize] {
+                need[v.0 as usize] = true;
+            }
+        }
+    }
     // Backward propagation to a fixed point (values only flow forward, so iterate in reverse).
     loop {
         let mut changed = false;

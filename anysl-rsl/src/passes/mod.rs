@@ -96,6 +96,11 @@ pub fn optimize(mut module: Module, opts: &PassOptions) -> Analyzed {
         report.stages.push(("dce", module.func.inst_count()));
     }
     analysis::analyze_uniform(&mut module.func);
-    report.uses_derivatives = analysis::analyze_derivatives(&mut module.func);
+    // A displacement's P and N leave it with their derivatives (bump mapping reads them).
+    let outputs: &[crate::ir::Global] = match module.kind {
+        crate::ir::ShaderKind::Displacement => &[crate::ir::Global::P, crate::ir::Global::N],
+        _ => &[],
+    };
+    report.uses_derivatives = analysis::analyze_derivatives(&mut module.func, outputs);
     Analyzed { module, report }
 }
