@@ -18,5 +18,7 @@
 pub mod build;
 pub mod film;
 pub mod geom;
+pub mod lights;
 pub mod render;
 pub mod shaders;
+pub mod surface;

@@ -20,12 +20,13 @@
 
 use crate::build::{Film, FrameDesc, ShaderCall};
 use crate::film::{reconstruct, SampleWindow};
-use crate::shaders::{apply_params, standard_light, ShaderLibrary};
+use crate::lights::{scene_light, SceneLight};
+use crate::shaders::{apply_params, ShaderLibrary};
+use crate::surface::SceneSurface;
 use anysl_core::{Matrix4, Spaces, SurfaceShader};
 use anysl_renderers::Projection;
 use anysl_renderers::{Camera, Image, Scene};
 use anysl_rsl::back::interp::{InterpShader, Program};
-use anysl_shaders::Light;
 use glam::DMat4;
 use std::collections::HashMap;
 use std::sync::Arc;
@@ -102,7 +103,7 @@ impl Surfaces<InterpShader> {
 /// them.
 pub struct FrameScene<S> {
     /// The renderer scene; its camera renders one pixel per film sample.
-    pub scene: Scene<S, Light>,
+    pub scene: Scene<SceneSurface<S>, SceneLight>,
     /// The samples' window.
     pub window: SampleWindow,
     /// Warnings (parameters that do not fit, unsupported lights).
@@ -112,40 +113,88 @@ pub struct FrameScene<S> {
 /// Builds the renderer scene of `frame` with surface shaders from `surfaces`.
 ///
 /// # Errors
-/// A surface shader that cannot be found or compiled, or inconsistent geometry.
+/// A surface shader that cannot be found or compiled, a light shader that is found but does not
+/// compile or is not a light shader, or inconsistent geometry. (A light shader that is not
+/// found is left out with a warning.)
 pub fn frame_scene<S: SurfaceShader + Clone>(
     frame: &FrameDesc,
     surfaces: &mut Surfaces<S>,
 ) -> Result<FrameScene<S>, String> {
     let mut warnings = Vec::new();
     let mut shaders = Vec::with_capacity(frame.surfaces.len());
-    for call in &frame.surfaces {
-        let (s, w) = surfaces.for_call(call)?;
+    // Per surface slot: whether its shaders name a coordinate system.
+    let mut spacey = Vec::with_capacity(frame.surfaces.len());
+    for (k, call) in frame.surfaces.iter().enumerate() {
+        let (surface, w) = surfaces.for_call(call)?;
         warnings.extend(w);
-        shaders.push(s);
+        let mut uses = surfaces.uses_spaces.get(&call.name).copied().unwrap_or(false);
+        let displacement = match frame.displacements.get(k).and_then(Option::as_ref) {
+            Some(d) => {
+                let (shader, w, names_space) = displacement_shader(d, &mut surfaces.library)?;
+                warnings.extend(w);
+                uses |= names_space;
+                Some(shader)
+            }
+            None => None,
+        };
+        spacey.push(uses);
+        shaders.push(SceneSurface { surface, displacement });
     }
     let mut lights = Vec::new();
+    // Frame light k → its index in `lights` (none when it is left out).
+    let mut light_of = Vec::with_capacity(frame.lights.len());
+    let mut spaces = None;
     for call in &frame.lights {
-        match standard_light(call) {
-            Ok((light, w)) => {
-                warnings.extend(w);
-                lights.push(light);
-            }
-            Err(e) => warnings.push(format!("{e}; the light is left out")),
+        if let Err(e) = surfaces.library.find(&call.shader.name) {
+            warnings.push(format!("{e}; the light is left out"));
+            light_of.push(None);
+            continue;
         }
+        let spaces = spaces.get_or_insert_with(|| frame_spaces(frame));
+        let (light, w) = scene_light(call, &mut surfaces.library, spaces)?;
+        warnings.extend(w);
+        light_of.push(Some(lights.len()));
+        lights.push(light);
     }
     if shaders.is_empty() {
         // A world without primitives still needs a shader slot.
-        shaders.push(surfaces.instance("defaultsurface")?);
+        shaders.push(SceneSurface { surface: surfaces.instance("defaultsurface")?, displacement: None });
+        spacey.push(false);
     }
     let window = SampleWindow::of(&frame.film);
     let (w, h) = window.sample_size();
     let camera = Camera::from_spec(&window.camera(&frame.camera, &frame.film), w, h);
     let mut instances = frame.instances.clone();
-    let surface_spaces = place_spaces(frame, &surfaces.uses_spaces, &mut instances, &mut shaders);
+    let mut surface_spaces = place_spaces(frame, &spacey, &mut instances, &mut shaders);
+    let surface_lights = place_lights(frame, &light_of, &lights, &mut instances, &mut shaders, &mut surface_spaces);
     let mut scene = Scene::new(camera, &frame.meshes, instances, shaders, lights).map_err(|e| e.to_string())?;
     scene.surface_spaces = surface_spaces;
+    scene.surface_lights = surface_lights;
+    // RenderMan has no sky: a ray that meets nothing (`trace`, a path tracer's bounce) sees black.
+    scene.sky = anysl_renderers::Sky { horizon: [0.0; 3], zenith: [0.0; 3], visible_to_camera: false };
     Ok(FrameScene { scene, window, warnings })
+}
+
+/// The displacement shader of `call` (run by the interpreter), its parameter warnings, and
+/// whether it names a coordinate system.
+fn displacement_shader(
+    call: &ShaderCall,
+    library: &mut ShaderLibrary,
+) -> Result<(InterpShader, Vec<String>, bool), String> {
+    let name = &call.name;
+    let module = library.module(name)?;
+    if module.kind != anysl_rsl::ir::ShaderKind::Displacement {
+        return Err(format!(
+            "shader \"{name}\" is a {} shader; Displacement needs a displacement shader",
+            format!("{:?}", module.kind).to_lowercase()
+        ));
+    }
+    let names_space = module.uses_spaces();
+    let module = anysl_rsl::passes::optimize(module, &anysl_rsl::passes::PassOptions::default());
+    let program = Program::new(module).map_err(|e| format!("displacement shader \"{name}\": {e}"))?;
+    let mut shader = InterpShader::new(Arc::new(program));
+    let warnings = apply_params(&mut shader, call);
+    Ok((shader, warnings, names_space))
 }
 
 /// A glam matrix (column vectors) as an RSL one (row vectors, row by row).
@@ -213,19 +262,64 @@ pub fn frame_spaces(frame: &FrameDesc) -> Spaces {
     t
 }
 
+/// Per-primitive light lists: where some instance is not lit by every light of the frame,
+/// each distinct (surface slot, light list) gets a slot of its own (a copy of the shader, with
+/// the slot's spaces) and the lights of its list; returns each slot's lights (`None`: all).
+fn place_lights<S: Clone, L: Clone>(
+    frame: &FrameDesc,
+    light_of: &[Option<usize>],
+    lights: &[L],
+    instances: &mut [anysl_renderers::Instance],
+    shaders: &mut Vec<S>,
+    spaces: &mut Vec<Spaces>,
+) -> Vec<Option<Vec<L>>> {
+    let mut out: Vec<Option<Vec<L>>> = vec![None; shaders.len()];
+    // Each list as indices into `lights` (the frame's lists hold distinct lights, so a list as
+    // long as `lights` is all of them).
+    let sets: Vec<Vec<usize>> = frame
+        .light_lists
+        .iter()
+        .map(|l| l.iter().filter_map(|&k| light_of.get(k as usize).copied().flatten()).collect())
+        .collect();
+    let partial = |list: usize| sets.get(list).is_some_and(|s| s.len() < lights.len());
+    if !(0..sets.len()).any(partial) {
+        return out;
+    }
+    let mut slots: HashMap<(usize, u32), usize> = HashMap::new();
+    let mut first_use = vec![true; shaders.len()];
+    for (i, inst) in instances.iter_mut().enumerate() {
+        let list = frame.instance_lights.get(i).copied().unwrap_or(0);
+        let s = inst.surface;
+        if let Some(&k) = slots.get(&(s, list)) {
+            inst.surface = k;
+            continue;
+        }
+        let k = if std::mem::take(&mut first_use[s]) {
+            s
+        } else {
+            shaders.push(shaders[s].clone());
+            spaces.resize(shaders.len() - 1, Spaces::default());
+            spaces.push(spaces.get(s).cloned().unwrap_or_default());
+            out.push(None);
+            shaders.len() - 1
+        };
+        out[k] = partial(list as usize).then(|| sets[list as usize].iter().map(|&j| lights[j].clone()).collect());
+        inst.surface = k;
+        slots.insert((s, list), k);
+    }
+    out
+}
+
 /// The named spaces of every surface: a shader that names a space gets one surface slot per
 /// distinct ("object", "shader") pair of the instances using it, each with its table, so the
 /// spaces are uniform over the points a renderer shades together; other shaders keep one
 /// slot and an empty table (never read).
 fn place_spaces<S: Clone>(
     frame: &FrameDesc,
-    uses: &HashMap<String, bool>,
+    spacey: &[bool],
     instances: &mut [anysl_renderers::Instance],
     shaders: &mut Vec<S>,
 ) -> Vec<Spaces> {
-    let names: Vec<&str> = frame.surfaces.iter().map(|c| c.name.as_str()).collect();
-    let spacey: Vec<bool> =
-        (0..shaders.len()).map(|k| names.get(k).is_some_and(|n| uses.get(*n).copied().unwrap_or(false))).collect();
     let mut out = vec![Spaces::default(); shaders.len()];
     if !spacey.iter().any(|&b| b) {
         return out;

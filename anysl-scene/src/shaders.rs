@@ -185,7 +185,10 @@ fn compatible(p: &Param, ty: ParamType) -> bool {
 pub fn apply_params<S: Shader>(shader: &mut S, call: &ShaderCall) -> Vec<String> {
     let meta = shader.meta();
     let mut warnings = Vec::new();
-    for p in &call.params.params {
+    // The primitive's variables after the shader call's own list: they override it. Names the
+    // shader does not have are other variables of the primitive, not a mistake.
+    let primvars = call.primvars.params.iter().filter(|p| meta.param(&p.name).is_some());
+    for p in call.params.params.iter().chain(primvars) {
         let Some(info) = meta.param(&p.name) else {
             let known: Vec<String> = meta.params.iter().map(|q| format!("{} {}", q.ty.keyword(), q.name)).collect();
             warnings.push(format!(

@@ -2,7 +2,7 @@
 //! `Display` written into the output directory.
 
 use crate::render::{render_any, Backend, RenderArgs, RendererName};
-use anysl_core::SurfaceShader;
+use anysl_core::{Shader, SurfaceShader};
 use anysl_renderers::{render_packet_stats, Image, RenderOptions};
 use anysl_scene::build::{BuildOptions, FrameDesc, SceneBuilder};
 use anysl_scene::render::{frame_scene, Surfaces};
@@ -135,7 +135,7 @@ fn render_frame<S: SurfaceShader + Clone>(
     let pixels = fs.finish(&frame.film, &image);
     let mut scene = fs.scene;
     if frame.surfaces.len() == scene.surfaces.len() {
-        surfaces.keep(frame, std::mem::take(&mut scene.surfaces));
+        surfaces.keep(frame, std::mem::take(&mut scene.surfaces).into_iter().map(|s| s.surface).collect());
     }
     let mut written = Vec::new();
     for d in &frame.displays {

@@ -34,22 +34,49 @@ pub struct CameraSpec {
     pub clipping: [f32; 2],
 }
 
-/// A camera ray: origin, unit direction, its per-pixel derivatives (zero for an
-/// orthographic camera, whose rays differ in origin only) and the clipped `t` range.
+/// How a camera ray changes from pixel to pixel (scaled by the footprint): its origin (the
+/// orthographic camera's rays differ in origin only) and its direction (the perspective
+/// camera's share the eye).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct RayDifferential {
+    /// ∂origin/∂x.
+    pub dodx: Vec3A,
+    /// ∂origin/∂y.
+    pub dody: Vec3A,
+    /// ∂dir/∂x.
+    pub ddx: Vec3A,
+    /// ∂dir/∂y.
+    pub ddy: Vec3A,
+}
+
+/// A camera ray: origin, unit direction, its per-pixel derivatives and the clipped `t` range.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PrimaryRay {
     /// Origin.
     pub origin: Vec3A,
     /// Unit direction.
     pub dir: Vec3A,
-    /// ∂dir/∂x (scaled by the footprint).
+    /// ∂dir/∂x (scaled by the footprint; zero for an orthographic camera).
     pub ddx: Vec3A,
     /// ∂dir/∂y.
     pub ddy: Vec3A,
+    /// ∂origin/∂x (scaled by the footprint; zero for a perspective camera).
+    pub dodx: Vec3A,
+    /// ∂origin/∂y.
+    pub dody: Vec3A,
     /// Nearest `t` (the near clipping plane).
     pub tmin: f32,
     /// Farthest `t` (the far clipping plane).
     pub tmax: f32,
+}
+
+impl PrimaryRay {
+    /// The ray's differentials.
+    #[inline(always)]
+    #[must_use]
+    pub fn differential(&self) -> RayDifferential {
+        RayDifferential { dodx: self.dodx, dody: self.dody, ddx: self.ddx, ddy: self.ddy }
+    }
 }
 
 /// A perspective or orthographic camera. Pixel coordinates are continuous: `(0, 0)` is the
@@ -191,6 +218,8 @@ impl Camera {
                 dir: self.forward,
                 ddx: Vec3A::ZERO,
                 ddy: Vec3A::ZERO,
+                dodx: self.right * (2.0 * footprint / self.width as f32),
+                dody: -self.up_v * (2.0 * footprint / self.height as f32),
                 tmin: self.near / z,
                 tmax: self.far / z,
             }
@@ -202,7 +231,7 @@ impl Camera {
                 let z = self.z_row.dot(dir);
                 (self.near / z, self.far / z)
             };
-            PrimaryRay { origin: self.position, dir, ddx, ddy, tmin, tmax }
+            PrimaryRay { origin: self.position, dir, ddx, ddy, dodx: Vec3A::ZERO, dody: Vec3A::ZERO, tmin, tmax }
         }
     }
 
@@ -308,6 +337,11 @@ mod tests {
         let cam = Camera::from_spec(&ortho, 40, 20);
         let r = cam.primary_ray(40.0, 20.0, 1.0);
         assert!((r.origin - Vec3A::new(2.0, -1.0, 0.0)).length() < 1e-6 && r.dir == Vec3A::Z);
+        // Its differentials are in the origin: one pixel (0.1 of the window) per pixel.
+        let (a, b) = (cam.primary_ray(10.0, 5.0, 0.5), cam.primary_ray(11.0, 6.0, 0.5));
+        assert!(a.ddx == Vec3A::ZERO && a.ddy == Vec3A::ZERO);
+        assert!((a.dodx * 2.0 - Vec3A::new(b.origin.x - a.origin.x, 0.0, 0.0)).length() < 1e-6, "{}", a.dodx);
+        assert!((a.dody * 2.0 - Vec3A::new(0.0, b.origin.y - a.origin.y, 0.0)).length() < 1e-6, "{}", a.dody);
     }
 
     #[test]

@@ -63,7 +63,7 @@ pub mod scenes;
 pub mod shading;
 
 pub use accel::{Accel, Hit};
-pub use camera::{Camera, CameraSpec, PrimaryRay, Projection};
+pub use camera::{Camera, CameraSpec, PrimaryRay, Projection, RayDifferential};
 pub use image::Image;
 pub use mesh::{Mesh, ObjError};
 pub use render::packet::{
@@ -74,4 +74,4 @@ pub use render::pbrt::{render_pbrt, Integrator};
 pub use render::scalar::{render_scalar, render_scalar_as};
 pub use render::RenderOptions;
 pub use scene::{Instance, Scene, SceneError, Sky, SurfaceHit};
-pub use shading::{FilteredShading, GroupShading, KernelShading, PlainShading};
+pub use shading::{FilteredShading, GroupShading, KernelShading, LightTables, PlainShading};

@@ -4,7 +4,7 @@
 //! triangles and builds the BVH once.
 
 use crate::accel::{Accel, Hit, RayPacket, MAX_PACKET};
-use crate::camera::Camera;
+use crate::camera::{Camera, RayDifferential};
 use crate::mesh::Mesh;
 use anysl_core::Spaces;
 use glam::{Mat4, Vec2, Vec3, Vec3A};
@@ -108,6 +108,12 @@ pub struct Scene<S, L> {
     /// surface without an entry sees [`Spaces::standard`]. Read only by shaders that name a
     /// space.
     pub surface_spaces: Vec<Spaces>,
+    /// The lights each surface slot sees (by [`Instance::surface`]) when that is not every
+    /// light of the scene: RenderMan's per-primitive light lists (`Illuminate`, lights
+    /// declared inside an attribute block). A front end gives each distinct (surface shader,
+    /// light list) its own slot. A slot without an entry, or with `None`, sees
+    /// [`Scene::lights`].
+    pub surface_lights: Vec<Option<Vec<L>>>,
     /// What escaping rays see.
     pub sky: Sky,
     instances: Vec<Instance>,
@@ -133,6 +139,16 @@ pub struct Scene<S, L> {
 }
 
 impl<S, L> Scene<S, L> {
+    /// The lights the points of surface slot `surface` see ([`Scene::surface_lights`]).
+    #[inline]
+    #[must_use]
+    pub fn lights_for(&self, surface: u32) -> &[L] {
+        match self.surface_lights.get(surface as usize) {
+            Some(Some(lights)) => lights,
+            _ => &self.lights,
+        }
+    }
+
     /// Places `meshes` by `instances` in world space and builds the BVH.
     ///
     /// # Errors
@@ -235,6 +251,7 @@ impl<S, L> Scene<S, L> {
             surfaces,
             lights,
             surface_spaces: Vec::new(),
+            surface_lights: Vec::new(),
             sky: Sky::default(),
             instances,
             positions,
@@ -334,8 +351,8 @@ impl<S, L> Scene<S, L> {
         self.accel.closest_hits(rays, out)
     }
 
-    /// The shading record of `hit` on the ray `origin + t · dir`; with `differential =
-    /// Some((∂dir/∂x, ∂dir/∂y))` (a ray from a fixed origin, as from a pinhole camera) it also
+    /// The shading record of `hit` on the ray `origin + t · dir`; with the camera ray's
+    /// `differential` (how its origin and direction change from pixel to pixel) it also
     /// carries the screen-space derivatives of P, N, s and t.
     ///
     /// Inlined into its callers, so the record is built in the caller's slot: called, it was
@@ -348,7 +365,7 @@ impl<S, L> Scene<S, L> {
         hit: &Hit,
         origin: Vec3A,
         dir: Vec3A,
-        differential: Option<(Vec3A, Vec3A)>,
+        differential: Option<RayDifferential>,
     ) -> SurfaceHit {
         let tri = &self.triangles[hit.prim as usize];
         let [i0, i1, i2] = tri.vertices.map(|i| i as usize);
@@ -422,19 +439,18 @@ impl<S, L> Scene<S, L> {
             ..SurfaceHit::default()
         };
 
-        if let Some((ddx, ddy)) = differential {
-            // Offset rays from the same origin meet the tangent plane at p + dP/dx, p + dP/dy.
-            let plane_d = ng.dot(p - origin);
-            let transfer = |dd: Vec3A| {
-                let dir2 = dir + dd;
+        if let Some(rd) = differential {
+            // The offset rays meet the tangent plane at p + dP/dx, p + dP/dy.
+            let transfer = |dorigin: Vec3A, dd: Vec3A| {
+                let (origin2, dir2) = (origin + dorigin, dir + dd);
                 let denom = ng.dot(dir2);
                 if denom.abs() < 1e-12 {
                     Vec3A::ZERO
                 } else {
-                    origin + dir2 * (plane_d / denom) - p
+                    origin2 + dir2 * (ng.dot(p - origin2) / denom) - p
                 }
             };
-            let (dpdx, dpdy) = (transfer(ddx), transfer(ddy));
+            let (dpdx, dpdy) = (transfer(rd.dodx, rd.ddx), transfer(rd.dody, rd.ddy));
             // Barycentric derivatives: dP = db1·e1 + db2·e2 (least squares in the plane).
             let (a11, a12, a22) = (e1.dot(e1), e1.dot(e2), e2.dot(e2));
             let gdet = a11 * a22 - a12 * a12;

@@ -39,26 +39,55 @@ pub struct Tracer<'a, S, L> {
     pub scene: &'a Scene<S, L>,
     /// Cast shadow rays in `illuminance` (else every light reaches every point).
     pub shadows: bool,
-    /// The scene's lights as data ([`LightData::of_all`]), when each has a description: the
-    /// light loops then run over plain numbers instead of dispatching to light shaders (for
-    /// the float types where that is the same bits, [`LightData::exact_for`]).
-    pub light_data: Option<&'a [LightData]>,
+    /// The lights of each surface slot as data, where each has a description.
+    pub light_data: &'a LightTables,
+}
+
+/// The lights each surface slot sees ([`Scene::lights_for`]) as data ([`LightData::of_all`]),
+/// where each light has a description: the light loops then run over plain numbers instead of
+/// dispatching to light shaders (for the float types where that is the same bits,
+/// [`LightData::exact_for`]). Made once per render.
+#[derive(Clone, Debug, Default)]
+pub struct LightTables {
+    per_surface: Vec<Option<Vec<LightData>>>,
+}
+
+impl LightTables {
+    /// The tables of `scene`'s surface slots.
+    #[must_use]
+    pub fn of<S, L: LightShader>(scene: &Scene<S, L>) -> Self {
+        let all = LightData::of_all(&scene.lights);
+        let per_surface = (0..scene.surfaces.len() as u32)
+            .map(|s| match scene.surface_lights.get(s as usize) {
+                Some(Some(lights)) => LightData::of_all(lights),
+                _ => all.clone(),
+            })
+            .collect();
+        Self { per_surface }
+    }
+
+    /// Surface slot `surface`'s lights as data, if each has a description.
+    #[inline(always)]
+    #[must_use]
+    pub fn for_surface(&self, surface: u32) -> Option<&[LightData]> {
+        self.per_surface.get(surface as usize).and_then(Option::as_deref)
+    }
 }
 
 impl<'a, S, L: LightShader> Tracer<'a, S, L> {
-    /// The tracer of `scene`, with `light_data` made by [`LightData::of_all`] from its lights
-    /// (kept by the caller for the render).
+    /// The tracer of `scene`, with `light_data` made by [`LightTables::of`] (kept by the
+    /// caller for the render).
     #[must_use]
-    pub fn new(scene: &'a Scene<S, L>, shadows: bool, light_data: Option<&'a [LightData]>) -> Self {
+    pub fn new(scene: &'a Scene<S, L>, shadows: bool, light_data: &'a LightTables) -> Self {
         Self { scene, shadows, light_data }
     }
 
-    /// The lights as data, where float type `F` computes with them what the light shaders
-    /// compute.
+    /// Surface slot `surface`'s lights as data, where float type `F` computes with them what
+    /// the light shaders compute.
     #[inline(always)]
-    fn data_for<F: ShadingFloat>(&self) -> Option<&'a [LightData]> {
+    fn data_for<F: ShadingFloat>(&self, surface: u32) -> Option<&'a [LightData]> {
         if LightData::exact_for::<F>() {
-            self.light_data
+            self.light_data.for_surface(surface)
         } else {
             None
         }
@@ -710,28 +739,29 @@ impl<F: ShadingFloat, S: SurfaceShader, L: LightShader> ShadingContext<F> for Sc
         body: B,
     ) {
         let tracer = self.tracer;
+        let surface = self.surface;
         let visibility = |mask, p, out: &LightOutput<F>| {
             tracer.shadows.then(|| Color::splat(shadow_visibility::<F, S, L>(tracer.scene, mask, p, out)))
         };
         // Data carries no category to select on.
-        match tracer.data_for::<F>().filter(|_| q.category.is_empty()) {
+        match tracer.data_for::<F>(surface).filter(|_| q.category.is_empty()) {
             Some(data) => run_illuminance(data, e, q, visibility, body),
             // Where the lights can run as data, the light-shader loop is the rare path
             // (lights without a description, a category): out of line, so that its copy of
             // the body and the light shaders' code (a spotlight's cosines) do not crowd the
             // shading pass's registers and frame. Elsewhere it is the path, inlined.
             None if LightData::exact_for::<F>() => {
-                run_illuminance_out_of_line(&tracer.scene.lights, e, q, visibility, body);
+                run_illuminance_out_of_line(tracer.scene.lights_for(surface), e, q, visibility, body);
             }
-            None => run_illuminance(&tracer.scene.lights, e, q, visibility, body),
+            None => run_illuminance(tracer.scene.lights_for(surface), e, q, visibility, body),
         }
     }
 
     #[inline(always)]
     fn ambient(&mut self, e: &Exec<F>) -> Color<F> {
-        match self.tracer.data_for::<F>() {
+        match self.tracer.data_for::<F>(self.surface) {
             Some(data) => sum_ambient(data, e, self.globals.P),
-            None => sum_ambient(&self.tracer.scene.lights, e, self.globals.P),
+            None => sum_ambient(self.tracer.scene.lights_for(self.surface), e, self.globals.P),
         }
     }
 
@@ -742,7 +772,7 @@ impl<F: ShadingFloat, S: SurfaceShader, L: LightShader> ShadingContext<F> for Sc
         if self.tracer.shadows {
             None
         } else {
-            self.tracer.data_for::<F>()
+            self.tracer.data_for::<F>(self.surface)
         }
     }
 
@@ -773,16 +803,22 @@ impl<F: ShadingFloat, S: SurfaceShader, L: LightShader> ShadingContext<F> for Sc
 
 /// A context that evaluates a surface shader *passively* (the path tracer's material
 /// interface): one unit white light from the viewer-facing normal direction, no ambient
-/// light, and `trace` sees black.
-pub struct ProbeContext<F: ShadingFloat> {
+/// light, and `trace` sees black. Named spaces are the surface's own.
+pub struct ProbeContext<'s, F: ShadingFloat> {
     /// The points being shaded.
     pub globals: Globals<F>,
+    /// The named spaces the shader sees ([`Scene::surface_spaces`]).
+    pub spaces: &'s Spaces,
 }
 
-impl<F: ShadingFloat> ShadingContext<F> for ProbeContext<F> {
+impl<F: ShadingFloat> ShadingContext<F> for ProbeContext<'_, F> {
     #[inline(always)]
     fn globals(&self) -> &Globals<F> {
         &self.globals
+    }
+
+    fn spaces(&self) -> &Spaces {
+        self.spaces
     }
 
     #[inline(always)]

@@ -9,8 +9,6 @@
  * every plank, box-filtered with filterstep; plastic lighting with the highlight
  * suppressed in the grooves, Oi = Os.
  */
-#include "anysl.h"
-
 surface parquet(
     uniform float Ka = 1;
     uniform float Kd = 0.75;
@@ -81,6 +79,9 @@ surface parquet(
     color Ct = groovecolor + (wood - groovecolor) * in_plank;
 
     /* Plastic, with the highlight weighted by in_plank. */
+    color spec = 0;
+    if (Ks != 0)
+        spec = specular(Nf, V, roughness);
     Oi = Os;
-    Ci = Os * (anysl_matte(Nf, Ct, Ka, Kd) + anysl_specular(Nf, V, Ks, roughness, specularcolor) * in_plank);
+    Ci = Os * (Ct * (Ka * ambient() + Kd * diffuse(Nf)) + specularcolor * Ks * spec * in_plank);
 }

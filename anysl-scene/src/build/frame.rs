@@ -28,8 +28,16 @@ pub struct FrameDesc {
     pub shader_spaces: Vec<Mat4>,
     /// The distinct surface shader calls (name + parameters).
     pub surfaces: Vec<ShaderCall>,
+    /// For each of `surfaces`, the displacement shader run before it (`Displacement`), if any.
+    pub displacements: Vec<Option<ShaderCall>>,
     /// The light sources that illuminate some primitive, in the order declared.
     pub lights: Vec<LightCall>,
+    /// Per instance, the lights that illuminate it: an index into `light_lists`.
+    pub instance_lights: Vec<u32>,
+    /// The distinct light lists of the instances, as indices into `lights` (RenderMan's
+    /// per-primitive light lists: the lights on at the primitive, by `LightSource` in an
+    /// enclosing attribute block or `Illuminate`).
+    pub light_lists: Vec<Vec<u32>>,
     /// Named coordinate systems (`CoordinateSystem`): name → that space's object-to-world.
     pub coordinate_systems: BTreeMap<String, Mat4>,
 }
@@ -41,6 +49,12 @@ pub struct ShaderCall {
     pub name: String,
     /// The parameters as written.
     pub params: ParamList,
+    /// The primitive variables of the primitive that can bind to shader parameters: those of
+    /// one value for the whole primitive (constant class, or uniform on a one-face primitive)
+    /// whose names are not geometry (`P`, `N`, `Cs`, `Os`, `s`, `t`, `st`, …). A shader
+    /// parameter of the same name takes the value, overriding `params` (RenderMan's rule);
+    /// other names are not the shader's business and are dropped silently.
+    pub primvars: ParamList,
     /// Where the request is.
     pub loc: Option<Loc>,
 }
@@ -50,14 +64,33 @@ impl ShaderCall {
     /// aside).
     #[must_use]
     pub fn same_as(&self, other: &Self) -> bool {
-        self.name == other.name
-            && self.params.params.len() == other.params.params.len()
-            && self
-                .params
-                .params
-                .iter()
-                .zip(&other.params.params)
-                .all(|(a, b)| a.name == b.name && a.decl == b.decl && a.values == b.values)
+        let same = |a: &ParamList, b: &ParamList| {
+            a.params.len() == b.params.len()
+                && a.params
+                    .iter()
+                    .zip(&b.params)
+                    .all(|(a, b)| a.name == b.name && a.decl == b.decl && a.values == b.values)
+        };
+        self.name == other.name && same(&self.params, &other.params) && same(&self.primvars, &other.primvars)
+    }
+
+    /// The primitive variables of `params` (a primitive's parameter list) that may bind to a
+    /// shader parameter (see [`ShaderCall::primvars`]).
+    #[must_use]
+    pub fn binding_primvars(params: &ParamList) -> ParamList {
+        const GEOMETRY: &[&str] = &["P", "Pw", "Pz", "N", "Np", "Ng", "Cs", "Os", "s", "t", "st", "u", "v"];
+        let mut out = ParamList::new();
+        for p in &params.params {
+            let one = match p.decl.class {
+                anysl_rib::Class::Constant => true,
+                anysl_rib::Class::Uniform => p.values.len() == p.decl.values_per_item(),
+                _ => false,
+            };
+            if one && !GEOMETRY.contains(&p.name.as_str()) {
+                out.params.push(p.clone());
+            }
+        }
+        out
     }
 }
 

@@ -14,12 +14,13 @@
 //! ```
 
 mod frame;
+mod place;
 
 pub use frame::{
     DisplayDesc, DisplayFormat, Film, FilterKind, FrameDesc, LightCall, PixelFilter, Quantize, ShaderCall,
 };
 
-use crate::geom::{self, Detail, PatchBasis, Tessellation};
+use crate::geom::{self, Detail, PatchBasis};
 use anysl_renderers::{CameraSpec, Instance, Mesh, Projection};
 use anysl_rib::{Basis, BuildError, Handle, Loc, Matrix, ParamList, RibBuilder};
 use glam::{Mat4, Vec3, Vec4};
@@ -88,6 +89,8 @@ struct Attributes {
     /// Orientation "inside" (after `ReverseOrientation`s), relative to the current transform.
     inside: bool,
     surface: Option<ShaderCall>,
+    /// The displacement shader (`Displacement`).
+    displacement: Option<ShaderCall>,
     /// Shader space: the object-to-world transform current at `Surface`.
     shader_space: Mat4,
     basis: (Basis, i32, Basis, i32),
@@ -106,6 +109,7 @@ impl Default for Attributes {
             two_sided: true,
             inside: false,
             surface: None,
+            displacement: None,
             shader_space: Mat4::IDENTITY,
             basis: (bezier.clone(), 3, bezier, 3),
             st: None,
@@ -121,6 +125,7 @@ struct ObjectPart {
     mesh: usize,
     relative: Mat4,
     attrs: Attributes,
+    primvars: ParamList,
 }
 
 /// Where the reader is.
@@ -146,8 +151,14 @@ pub struct SceneBuilder {
     instances: Vec<Instance>,
     shader_spaces: Vec<Mat4>,
     surfaces: Vec<ShaderCall>,
+    displacements: Vec<Option<ShaderCall>>,
     lights: Vec<LightCall>,
     light_used: Vec<bool>,
+    /// Per instance, its light list (an index into `light_lists`).
+    instance_lights: Vec<u32>,
+    /// The distinct light lists of the instances (indices into `lights`), interned.
+    light_lists: Vec<Vec<u32>>,
+    light_list_index: HashMap<Vec<u32>, u32>,
     light_handles: HashMap<Handle, usize>,
     objects: HashMap<Handle, Vec<ObjectPart>>,
     recording: Option<(Handle, Mat4, Vec<ObjectPart>)>,
@@ -221,8 +232,12 @@ impl SceneBuilder {
             instances: Vec::new(),
             shader_spaces: Vec::new(),
             surfaces: Vec::new(),
+            displacements: Vec::new(),
             lights: Vec::new(),
             light_used: Vec::new(),
+            instance_lights: Vec::new(),
+            light_lists: Vec::new(),
+            light_list_index: HashMap::new(),
             light_handles: HashMap::new(),
             objects: HashMap::new(),
             recording: None,
@@ -314,109 +329,6 @@ impl SceneBuilder {
         }
     }
 
-    /// The surface shader index for the current attributes (calls with equal parameters
-    /// share one).
-    fn surface_index(surfaces: &mut Vec<ShaderCall>, attrs: &Attributes) -> usize {
-        let call = attrs.surface.clone().unwrap_or(ShaderCall {
-            name: "defaultsurface".into(),
-            params: ParamList::new(),
-            loc: None,
-        });
-        if let Some(k) = surfaces.iter().position(|s| s.same_as(&call)) {
-            return k;
-        }
-        surfaces.push(call);
-        surfaces.len() - 1
-    }
-
-    fn place(&mut self, mesh: usize, transform: Mat4, attrs: &Attributes) {
-        let surface = Self::surface_index(&mut self.surfaces, attrs);
-        let mut inst = Instance::new(mesh, surface, transform);
-        inst.color = attrs.color;
-        inst.opacity = attrs.opacity;
-        inst.two_sided = attrs.two_sided;
-        // The normals are carried by the inverse transpose, which keeps them on the same side
-        // of the surface under a mirroring transform: exactly what RenderMan's rule (flip the
-        // cross product dPdu × dPdv when the orientation and the handedness differ) gives with
-        // the default orientation. Only "inside" (after the handedness check of `Orientation
-        // "lh"/"rh"`) turns them around.
-        inst.flip_normals = attrs.inside;
-        for (k, on) in attrs.lights_on.iter().enumerate() {
-            if *on {
-                self.light_used[k] = true;
-            }
-        }
-        self.instances.push(inst);
-        self.shader_spaces.push(attrs.shader_space);
-    }
-
-    /// Adds a tessellated primitive under the current transform and attributes.
-    fn add(&mut self, result: Result<Tessellation, geom::GeomError>, what: &str) -> Result<(), BuildError> {
-        if self.block != Block::World {
-            return Err(BuildError::error(format!("{what} outside WorldBegin/WorldEnd")));
-        }
-        let mut t = match result {
-            Ok(t) => t,
-            Err(e) => return Err(BuildError::warning(format!("{what} skipped: {}", e.0))),
-        };
-        let warnings = std::mem::take(&mut t.warnings);
-        if !t.triangles.is_empty() {
-            if let Some(st) = self.attrs.st {
-                // TextureCoordinates: s,t bilinear in (u, v) between the four corners.
-                t.st =
-                    t.uv.iter()
-                        .map(|uv| {
-                            let (u, v) = (uv.x, uv.y);
-                            let lerp = |a: f32, b: f32, c: f32, d: f32| {
-                                (a * (1.0 - u) + b * u) * (1.0 - v) + (c * (1.0 - u) + d * u) * v
-                            };
-                            glam::Vec2::new(lerp(st[0], st[2], st[4], st[6]), lerp(st[1], st[3], st[5], st[7]))
-                        })
-                        .collect();
-            }
-            let projective = self.ctm.row(3) != Vec4::W;
-            let mut mesh = Mesh {
-                positions: t.positions,
-                normals: t.normals,
-                uvs: t.uv,
-                triangles: t.triangles,
-                st: Some(t.st),
-                dpdu_dpdv: Some((t.dpdu, t.dpdv)),
-                cs: t.cs,
-                os: t.os,
-            };
-            let transform = if projective && self.recording.is_none() {
-                // A projective transform (`Perspective`) is applied to the vertices here.
-                let m = self.ctm;
-                for p in &mut mesh.positions {
-                    *p = m.project_point3(*p);
-                }
-                mesh.dpdu_dpdv = None;
-                Mat4::IDENTITY
-            } else {
-                self.ctm
-            };
-            self.meshes.push(mesh);
-            let index = self.meshes.len() - 1;
-            match &mut self.recording {
-                Some((_, base, parts)) => parts.push(ObjectPart {
-                    mesh: index,
-                    relative: base.inverse() * transform,
-                    attrs: self.attrs.clone(),
-                }),
-                None => {
-                    let attrs = self.attrs.clone();
-                    self.place(index, transform, &attrs);
-                }
-            }
-        }
-        if warnings.is_empty() {
-            Ok(())
-        } else {
-            Err(BuildError::warning(format!("{what}: {}", warnings.join("; "))))
-        }
-    }
-
     fn patch_basis(&self) -> Result<PatchBasis, BuildError> {
         let (u, us, v, vs) = &self.attrs.basis;
         PatchBasis::from_rib(u, *us, v, *vs).map_err(|e| BuildError::error(e.0))
@@ -484,6 +396,14 @@ impl RibBuilder for SceneBuilder {
         };
         let lights: Vec<LightCall> =
             self.lights.iter().zip(&self.light_used).filter(|(_, used)| **used).map(|(l, _)| l.clone()).collect();
+        // Light lists by the frame's light indices (the lights no primitive uses left out).
+        let mut renumber = Vec::with_capacity(self.light_used.len());
+        let mut next = 0u32;
+        for &used in &self.light_used {
+            renumber.push(next);
+            next += u32::from(used);
+        }
+        let light_lists = self.light_lists.iter().map(|l| l.iter().map(|&k| renumber[k as usize]).collect()).collect();
         let frame = FrameDesc {
             number: self.frame_number,
             index: self.frames.len(),
@@ -494,12 +414,17 @@ impl RibBuilder for SceneBuilder {
             instances: std::mem::take(&mut self.instances),
             shader_spaces: std::mem::take(&mut self.shader_spaces),
             surfaces: std::mem::take(&mut self.surfaces),
+            displacements: std::mem::take(&mut self.displacements),
             lights,
+            instance_lights: std::mem::take(&mut self.instance_lights),
+            light_lists,
             coordinate_systems: std::mem::take(&mut self.coordinate_systems),
         };
         self.frames.push(frame);
         self.lights.clear();
         self.light_used.clear();
+        self.light_lists.clear();
+        self.light_list_index.clear();
         self.light_handles.clear();
         self.objects.clear();
         self.recording = None;
@@ -568,7 +493,7 @@ impl RibBuilder for SceneBuilder {
             return Err(BuildError::error(format!("ObjectInstance {handle}: no object of that handle")));
         };
         for part in parts {
-            self.place(part.mesh, self.ctm * part.relative, &part.attrs);
+            self.place(part.mesh, self.ctm * part.relative, &part.attrs, &part.primvars);
         }
         ok!()
     }
@@ -809,7 +734,12 @@ impl RibBuilder for SceneBuilder {
 
     fn light_source(&mut self, loc: &Loc, name: &str, handle: &Handle, params: &ParamList) -> Result<(), BuildError> {
         self.lights.push(LightCall {
-            shader: ShaderCall { name: name.to_string(), params: params.clone(), loc: Some(loc.clone()) },
+            shader: ShaderCall {
+                name: name.to_string(),
+                params: params.clone(),
+                primvars: ParamList::new(),
+                loc: Some(loc.clone()),
+            },
             transform: self.ctm,
         });
         self.light_used.push(false);
@@ -831,9 +761,23 @@ impl RibBuilder for SceneBuilder {
     }
 
     fn surface(&mut self, loc: &Loc, name: &str, params: &ParamList) -> Result<(), BuildError> {
-        self.attrs.surface =
-            Some(ShaderCall { name: name.to_string(), params: params.clone(), loc: Some(loc.clone()) });
+        self.attrs.surface = Some(ShaderCall {
+            name: name.to_string(),
+            params: params.clone(),
+            primvars: ParamList::new(),
+            loc: Some(loc.clone()),
+        });
         self.attrs.shader_space = self.current_object_to_world();
+        ok!()
+    }
+
+    fn displacement(&mut self, loc: &Loc, name: &str, params: &ParamList) -> Result<(), BuildError> {
+        self.attrs.displacement = (name != "null").then(|| ShaderCall {
+            name: name.to_string(),
+            params: params.clone(),
+            primvars: ParamList::new(),
+            loc: Some(loc.clone()),
+        });
         ok!()
     }
 
@@ -961,12 +905,12 @@ impl RibBuilder for SceneBuilder {
 
     fn polygon(&mut self, _loc: &Loc, params: &ParamList) -> Result<(), BuildError> {
         let d = self.tess_detail();
-        self.add(geom::polygon(params, &d), "Polygon")
+        self.add(geom::polygon(params, &d), "Polygon", params)
     }
 
     fn general_polygon(&mut self, _loc: &Loc, nverts: &[i32], params: &ParamList) -> Result<(), BuildError> {
         let d = self.tess_detail();
-        self.add(geom::general_polygon(nverts, params, &d), "GeneralPolygon")
+        self.add(geom::general_polygon(nverts, params, &d), "GeneralPolygon", params)
     }
 
     fn points_polygons(
@@ -977,7 +921,7 @@ impl RibBuilder for SceneBuilder {
         params: &ParamList,
     ) -> Result<(), BuildError> {
         let d = self.tess_detail();
-        self.add(geom::points_polygons(nverts, verts, params, &d), "PointsPolygons")
+        self.add(geom::points_polygons(nverts, verts, params, &d), "PointsPolygons", params)
     }
 
     fn points_general_polygons(
@@ -989,12 +933,12 @@ impl RibBuilder for SceneBuilder {
         params: &ParamList,
     ) -> Result<(), BuildError> {
         let d = self.tess_detail();
-        self.add(geom::points_general_polygons(nloops, nverts, verts, params, &d), "PointsGeneralPolygons")
+        self.add(geom::points_general_polygons(nloops, nverts, verts, params, &d), "PointsGeneralPolygons", params)
     }
 
     fn patch(&mut self, _loc: &Loc, kind: &str, params: &ParamList) -> Result<(), BuildError> {
         let (d, basis) = (self.tess_detail(), self.patch_basis()?);
-        self.add(geom::patch(kind, &basis, params, &d), "Patch")
+        self.add(geom::patch(kind, &basis, params, &d), "Patch", params)
     }
 
     fn patch_mesh(
@@ -1008,7 +952,7 @@ impl RibBuilder for SceneBuilder {
         params: &ParamList,
     ) -> Result<(), BuildError> {
         let (d, basis) = (self.tess_detail(), self.patch_basis()?);
-        self.add(geom::patch_mesh(kind, nu, uwrap, nv, vwrap, &basis, params, &d), "PatchMesh")
+        self.add(geom::patch_mesh(kind, nu, uwrap, nv, vwrap, &basis, params, &d), "PatchMesh", params)
     }
 
     fn nu_patch(
@@ -1028,7 +972,7 @@ impl RibBuilder for SceneBuilder {
     ) -> Result<(), BuildError> {
         let d = self.tess_detail();
         let t = geom::nu_patch(nu, uorder, uknot, umin, umax, nv, vorder, vknot, vmin, vmax, params, &d);
-        self.add(t, "NuPatch")
+        self.add(t, "NuPatch", params)
     }
 
     fn trim_curve(
@@ -1057,7 +1001,7 @@ impl RibBuilder for SceneBuilder {
         params: &ParamList,
     ) -> Result<(), BuildError> {
         let d = self.tess_detail();
-        self.add(geom::sphere(radius, zmin, zmax, thetamax, params, &d), "Sphere")
+        self.add(geom::sphere(radius, zmin, zmax, thetamax, params, &d), "Sphere", params)
     }
 
     fn cone(
@@ -1069,7 +1013,7 @@ impl RibBuilder for SceneBuilder {
         params: &ParamList,
     ) -> Result<(), BuildError> {
         let d = self.tess_detail();
-        self.add(geom::cone(height, radius, thetamax, params, &d), "Cone")
+        self.add(geom::cone(height, radius, thetamax, params, &d), "Cone", params)
     }
 
     fn cylinder(
@@ -1082,7 +1026,7 @@ impl RibBuilder for SceneBuilder {
         params: &ParamList,
     ) -> Result<(), BuildError> {
         let d = self.tess_detail();
-        self.add(geom::cylinder(radius, zmin, zmax, thetamax, params, &d), "Cylinder")
+        self.add(geom::cylinder(radius, zmin, zmax, thetamax, params, &d), "Cylinder", params)
     }
 
     fn hyperboloid(
@@ -1094,7 +1038,7 @@ impl RibBuilder for SceneBuilder {
         params: &ParamList,
     ) -> Result<(), BuildError> {
         let d = self.tess_detail();
-        self.add(geom::hyperboloid(*point1, *point2, thetamax, params, &d), "Hyperboloid")
+        self.add(geom::hyperboloid(*point1, *point2, thetamax, params, &d), "Hyperboloid", params)
     }
 
     fn paraboloid(
@@ -1107,7 +1051,7 @@ impl RibBuilder for SceneBuilder {
         params: &ParamList,
     ) -> Result<(), BuildError> {
         let d = self.tess_detail();
-        self.add(geom::paraboloid(rmax, zmin, zmax, thetamax, params, &d), "Paraboloid")
+        self.add(geom::paraboloid(rmax, zmin, zmax, thetamax, params, &d), "Paraboloid", params)
     }
 
     fn disk(
@@ -1119,7 +1063,7 @@ impl RibBuilder for SceneBuilder {
         params: &ParamList,
     ) -> Result<(), BuildError> {
         let d = self.tess_detail();
-        self.add(geom::disk(height, radius, thetamax, params, &d), "Disk")
+        self.add(geom::disk(height, radius, thetamax, params, &d), "Disk", params)
     }
 
     fn torus(
@@ -1133,14 +1077,14 @@ impl RibBuilder for SceneBuilder {
         params: &ParamList,
     ) -> Result<(), BuildError> {
         let d = self.tess_detail();
-        self.add(geom::torus(major_radius, minor_radius, phimin, phimax, thetamax, params, &d), "Torus")
+        self.add(geom::torus(major_radius, minor_radius, phimin, phimax, thetamax, params, &d), "Torus", params)
     }
 
-    fn geometry(&mut self, _loc: &Loc, kind: &str, _params: &ParamList) -> Result<(), BuildError> {
+    fn geometry(&mut self, _loc: &Loc, kind: &str, params: &ParamList) -> Result<(), BuildError> {
         match kind {
             "teapot" => {
                 let d = self.tess_detail();
-                self.add(Ok(geom::teapot(&d)), "Geometry \"teapot\"")
+                self.add(Ok(geom::teapot(&d)), "Geometry \"teapot\"", params)
             }
             other => Err(BuildError::warning(format!("Geometry \"{other}\" is not known (\"teapot\" is)"))),
         }

@@ -163,6 +163,33 @@ fn orthographic_size_does_not_depend_on_distance() {
     assert!(pnear > 3 * pfar, "{pnear} vs {pfar}");
 }
 
+/// Orthographic rays differ in origin, not direction: a plane facing the camera has `area(P)`
+/// one pixel's area of the screen window, at any distance, in the scalar and packet
+/// renderers (the screen derivatives come from the origin differentials).
+#[test]
+fn orthographic_derivatives_are_the_pixel_spacing() {
+    let dir = std::env::temp_dir().join(format!("anysl-scene-ortho-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    std::fs::write(dir.join("showarea.sl"), "surface showarea(float scale = 1;) { Ci = area(P) * scale; Oi = 1; }")
+        .expect("write shader");
+    for d in [3.0, 30.0] {
+        let rib = format!(
+            "Format 16 16 1 {ONE_SAMPLE} Projection \"orthographic\" ScreenWindow -2 2 -2 2\n\
+             WorldBegin Surface \"showarea\" \"scale\" 16 Translate 0 0 {d}\n\
+             Polygon \"P\" [-5 -5 0 5 -5 0 5 5 0 -5 5 0] WorldEnd"
+        );
+        let frame = frames(&rib).remove(0);
+        let mut surfaces = Surfaces::interpreter(ShaderLibrary::new(vec![dir.clone()], Vec::new()));
+        let fs = frame_scene(&frame, &mut surfaces).expect("the scene builds");
+        let opts = RenderOptions { threads: 1, ..RenderOptions::default() };
+        for image in [render_scalar(&fs.scene, &opts), render_packet::<F32x8, _, _>(&fs.scene, &opts)] {
+            let px = fs.finish(&frame.film, &image);
+            // Pixels are 0.25 apart: area 1/16, times 16.
+            assert!(px.iter().all(|p| (p[0] - 1.0).abs() < 1e-4), "{:?}", &px[..4]);
+        }
+    }
+}
+
 fn psnr(a: &[[f32; 4]], b: &[[f32; 4]]) -> f64 {
     let mse: f64 = a
         .iter()
@@ -225,4 +252,32 @@ fn a_wrong_parameter_warns_and_the_rest_renders() {
     assert_eq!(fs.warnings.len(), 2, "{:?}", fs.warnings);
     assert!(fs.warnings[0].contains("\"Kx\"") && fs.warnings[0].contains("plastic"), "{}", fs.warnings[0]);
     assert!(fs.warnings[1].contains("string Ks") && fs.warnings[1].contains("float Ks"), "{}", fs.warnings[1]);
+}
+
+/// A primitive variable of one value named like a shader parameter sets that parameter for
+/// the primitive (over the `Surface` list); other primitive variables are no warning.
+#[test]
+fn a_constant_primitive_variable_binds_to_the_shader_parameter() {
+    let scene = |surface: &str, prim: &str| {
+        format!(
+            "Format 16 16 1 {ONE_SAMPLE} Projection \"perspective\" \"fov\" 30\n\
+             WorldBegin LightSource \"distantlight\" 1 \"from\" [0 0 0] \"to\" [0 0 1]\n\
+             Surface {surface} Translate 0 0 5 Sphere 1 -1 1 360 {prim} WorldEnd"
+        )
+    };
+    let bound = scene("\"matte\" \"Kd\" 0.9", "\"constant float Kd\" [0.3] \"constant float notashaderparam\" [7]");
+    let given = scene("\"matte\" \"Kd\" 0.3", "");
+    let (_, a) = render(&bound);
+    let (_, b) = render(&given);
+    let (_, c) = render(&scene("\"matte\" \"Kd\" 0.9", ""));
+    assert!(a[8 * 16 + 8][0] > 0.2, "{:?}", a[8 * 16 + 8]);
+    assert_eq!(a, b);
+    assert_ne!(a, c);
+    let frame = frames(&bound).remove(0);
+    let mut surfaces = Surfaces::interpreter(ShaderLibrary::new(Vec::new(), Vec::new()));
+    let fs = frame_scene(&frame, &mut surfaces).expect("builds");
+    assert!(fs.warnings.is_empty(), "{:?}", fs.warnings);
+    // A variable with a value per vertex does not bind (it would vary over the surface).
+    let (_, d) = render(&scene("\"matte\" \"Kd\" 0.9", "\"varying float Kd\" [0.3 0.3 0.3 0.3]"));
+    assert_eq!(d, c);
 }

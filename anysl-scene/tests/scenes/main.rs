@@ -3,5 +3,8 @@
 //!
 //! `cargo test -p anysl-scene --test scenes spaces::` runs one module.
 
+mod displacement;
+mod examples;
 mod known_answers;
+mod lights;
 mod spaces;

@@ -4,7 +4,7 @@
 //! filter of width 1: pixel (i, j) looks along (x, y, 1) with x = (i + ½)/8 − 1,
 //! y = 1 − (j + ½)/8).
 
-use anysl_renderers::{render_packet, render_scalar, RenderOptions};
+use anysl_renderers::{render_packet, render_pbrt, render_scalar, Integrator, RenderOptions};
 use anysl_scene::build::{BuildOptions, SceneBuilder};
 use anysl_scene::render::{frame_scene, Surfaces};
 use anysl_scene::shaders::ShaderLibrary;
@@ -113,4 +113,37 @@ fn raster_and_ndc_are_the_pixel_grid() {
             (x.abs() < 0.5 && y.abs() < 0.5).then(|| [i as f32 + 0.5, j as f32 + 0.5, px[j * 16 + i][2]])
         });
     }
+}
+
+/// The pbrt-like renderer's passive integrator evaluates the material with the surface's own
+/// spaces too: lit head-on by a unit distant light, an NDC-coloured quad shows its NDC
+/// coordinates.
+#[test]
+fn the_passive_integrator_sees_the_surfaces_spaces() {
+    let quad = "Polygon \"P\" [-3 -3 0 3 -3 0 3 3 0 -3 3 0]";
+    let rib = format!(
+        "{HEAD}WorldBegin LightSource \"distantlight\" 1 \"from\" [0 0 0] \"to\" [0 0 1]\n\
+         Surface \"showspace\" \"string space\" \"NDC\" Translate 0 0 5 {quad} WorldEnd"
+    );
+    let mut b = SceneBuilder::new(BuildOptions::default());
+    anysl_rib::parse_str("test.rib", &rib, &mut b, &anysl_rib::Options::new()).expect("reads");
+    let frame = b.finish().remove(0);
+    let scenes = PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes"));
+    let mut surfaces = Surfaces::interpreter(ShaderLibrary::new(vec![scenes], Vec::new()));
+    let fs = frame_scene(&frame, &mut surfaces).expect("the scene builds");
+    let opts = RenderOptions { threads: 1, ..RenderOptions::default() };
+    let px = fs.finish(&frame.film, &render_pbrt(&fs.scene, &opts, Integrator::Passive));
+    let mut checked = 0;
+    for j in 4..12 {
+        for i in 4..12 {
+            let p = px[j * 16 + i];
+            let e = [(i as f32 + 0.5) / 16.0, (j as f32 + 0.5) / 16.0];
+            assert!(
+                (p[0] - e[0]).abs() < 2e-3 && (p[1] - e[1]).abs() < 2e-3,
+                "pixel ({i}, {j}): {p:?}, expected {e:?}"
+            );
+            checked += 1;
+        }
+    }
+    assert_eq!(checked, 64);
 }

@@ -12,10 +12,13 @@
 
 use super::{render_bands, sample_offset, RenderOptions};
 use crate::accel::{Hit, RayPacket, MAX_PACKET};
+use crate::camera::RayDifferential;
 use crate::image::Image;
 use crate::scene::{Scene, SurfaceHit};
-use crate::shading::{shade_lanes_by, Depth, FilteredShading, GroupShading, KernelShading, Lanes, Tracer, MAX_LANES};
-use anysl_core::{Globals, LightData, LightShader, ShadingFloat, SurfaceOutput, SurfaceShader};
+use crate::shading::{
+    shade_lanes_by, Depth, FilteredShading, GroupShading, KernelShading, Lanes, LightTables, Tracer, MAX_LANES,
+};
+use anysl_core::{Globals, LightShader, ShadingFloat, SurfaceOutput, SurfaceShader};
 use glam::Vec3A;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::{Duration, Instant};
@@ -231,8 +234,8 @@ where
     let n = opts.grid();
     let weight = 1.0 / (n * n) as f32;
     let footprint = 1.0 / n as f32;
-    let light_data = LightData::of_all(&scene.lights);
-    let tracer = Tracer::new(scene, opts.shadows, light_data.as_deref());
+    let light_data = LightTables::of(scene);
+    let tracer = Tracer::new(scene, opts.shadows, &light_data);
     let band_rows = 8u32.max(bh);
     let label = format!("packet {}×{} {}", bw, bh, F::NAME);
 
@@ -261,13 +264,13 @@ where
                     let (ox, oy) = sample_offset(k, n);
                     // Trace the packet: all its rays through the BVH together.
                     let mut rays = RayPacket::default();
-                    let mut differentials = [(Vec3A::ZERO, Vec3A::ZERO); MAX_LANES];
+                    let mut differentials = [RayDifferential::default(); MAX_LANES];
                     for lane in (0..packet_lanes).filter(|lane| (active >> lane) & 1 != 0) {
                         let (px, py) = lane_pixel(lane);
                         let ray = cam.primary_ray(px as f32 + ox, (y0 + py) as f32 + oy, footprint);
                         dirs[lane] = ray.dir;
                         origins[lane] = ray.origin;
-                        differentials[lane] = (ray.ddx, ray.ddy);
+                        differentials[lane] = ray.differential();
                         rays.set(lane, ray.origin, ray.dir, ray.tmin, ray.tmax);
                     }
                     let hit = scene.intersect_packet_camera(&rays, &mut found);

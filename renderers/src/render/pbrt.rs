@@ -29,14 +29,16 @@
 //! material does so too, so its base colour is filtered like the other renderers' pictures.
 
 use super::{render_bands, sample_offset, RenderOptions};
+use crate::camera::RayDifferential;
 use crate::image::Image;
 use crate::scene::{Scene, SurfaceHit};
 use crate::shading::{
-    gather_globals, ray_epsilon, shade_lanes_by, Depth, FilteredShading, Lanes, ProbeContext, Tracer, MAX_LAYERS,
+    gather_globals, ray_epsilon, shade_lanes_by, Depth, FilteredShading, Lanes, LightTables, ProbeContext, Tracer,
+    MAX_LAYERS,
 };
 use anysl_ad::Dual;
 use anysl_core::points::SplitMix64;
-use anysl_core::{Emission, Exec, LightData, LightShader, ParamValue, SurfaceShader, Vec3};
+use anysl_core::{Emission, Exec, LightShader, ParamValue, Spaces, SurfaceShader, Vec3};
 use glam::Vec3A;
 
 /// How the pbrt-like renderer computes the light leaving a surface.
@@ -82,8 +84,8 @@ where
     let n = opts.grid();
     let weight = 1.0 / (n * n) as f32;
     let footprint = 1.0 / n as f32;
-    let light_data = LightData::of_all(&scene.lights);
-    let tracer = Tracer::new(scene, opts.shadows, light_data.as_deref());
+    let light_data = LightTables::of(scene);
+    let tracer = Tracer::new(scene, opts.shadows, &light_data);
     let derivs = FilteredShading::flags(&scene.surfaces, opts.derivatives);
     let filtered = FilteredShading { uses_derivatives: &derivs };
     let passive = Passive { scene, params: &params, shadows: opts.shadows, derivs: &derivs };
@@ -101,10 +103,10 @@ where
             for k in 0..n * n {
                 let (ox, oy) = sample_offset(k, n);
                 let ray = cam.primary_ray(x as f32 + ox, y as f32 + oy, footprint);
-                let (o, d, ddx, ddy) = (ray.origin, ray.dir, ray.ddx, ray.ddy);
+                let (o, d, diff) = (ray.origin, ray.dir, ray.differential());
                 acc += match integrator {
-                    Integrator::Active => li_active(tracer, filtered, o, d, (ddx, ddy), (ray.tmin, ray.tmax)),
-                    Integrator::Passive => passive.li(o, d, Some((ddx, ddy)), 0, 0, true, &mut rng),
+                    Integrator::Active => li_active(tracer, filtered, o, d, diff, (ray.tmin, ray.tmax)),
+                    Integrator::Passive => passive.li(o, d, Some(diff), 0, 0, true, &mut rng),
                 };
             }
             *pixel = (acc * weight).to_array();
@@ -118,7 +120,7 @@ fn li_active<S: SurfaceShader, L: LightShader>(
     how: FilteredShading<'_>,
     o: Vec3A,
     d: Vec3A,
-    diff: (Vec3A, Vec3A),
+    diff: RayDifferential,
     (tmin, tmax): (f32, f32),
 ) -> Vec3A {
     let scene = tracer.scene;
@@ -147,7 +149,7 @@ impl<S: SurfaceShader, L: LightShader> Passive<'_, S, L> {
         &self,
         o: Vec3A,
         d: Vec3A,
-        diff: Option<(Vec3A, Vec3A)>,
+        diff: Option<RayDifferential>,
         bounce: u32,
         layer: u32,
         camera: bool,
@@ -182,13 +184,14 @@ impl<S: SurfaceShader, L: LightShader> Passive<'_, S, L> {
     /// uses derivatives; hits of secondary rays carry none).
     fn material(&self, sh: &SurfaceHit) -> (Vec3A, Vec3A) {
         let shader = &self.scene.surfaces[sh.surface as usize];
+        let spaces = self.scene.surface_spaces.get(sh.surface as usize).unwrap_or(Spaces::standard());
         if self.derivs[sh.surface as usize] {
-            let mut ctx = ProbeContext { globals: gather_globals::<Dual<f32>>(std::slice::from_ref(sh), 1, 0) };
+            let mut ctx = ProbeContext { globals: gather_globals::<Dual<f32>>(std::slice::from_ref(sh), 1, 0), spaces };
             let out = shader.shade(&mut ctx, &mut Exec::<Dual<f32>>::new());
             let (ci, oi) = (out.Ci, out.Oi);
             (Vec3A::new(ci.r.val, ci.g.val, ci.b.val), Vec3A::new(oi.r.val, oi.g.val, oi.b.val))
         } else {
-            let mut ctx = ProbeContext { globals: gather_globals::<f32>(std::slice::from_ref(sh), 1, 0) };
+            let mut ctx = ProbeContext { globals: gather_globals::<f32>(std::slice::from_ref(sh), 1, 0), spaces };
             let out = shader.shade(&mut ctx, &mut Exec::<f32>::new());
             (Vec3A::new(out.Ci.r, out.Ci.g, out.Ci.b), Vec3A::new(out.Oi.r, out.Oi.g, out.Oi.b))
         }
@@ -203,7 +206,7 @@ impl<S: SurfaceShader, L: LightShader> Passive<'_, S, L> {
         let eps = ray_epsilon(p);
         let mut diffuse = Vec3A::ZERO;
         let mut specular = Vec3A::ZERO;
-        for light in &self.scene.lights {
+        for light in self.scene.lights_for(sh.surface) {
             let out = light.light::<f32>(&mut Exec::new(), ps);
             if !out.lit {
                 continue;

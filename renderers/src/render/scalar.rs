@@ -8,9 +8,9 @@
 use super::{render_bands, sample_offset, RenderOptions};
 use crate::image::Image;
 use crate::scene::Scene;
-use crate::shading::{shade_lanes, Depth, FilteredShading, Lanes, Tracer};
+use crate::shading::{shade_lanes, Depth, FilteredShading, Lanes, LightTables, Tracer};
 use anysl_ad::Dual;
-use anysl_core::{Color, LightData, LightShader, ShadingFloat, SurfaceShader};
+use anysl_core::{Color, LightShader, ShadingFloat, SurfaceShader};
 
 /// Renders `scene` one ray at a time; see the module docs.
 #[must_use]
@@ -44,8 +44,8 @@ where
     let n = opts.grid();
     let weight = 1.0 / (n * n) as f32;
     let footprint = 1.0 / n as f32;
-    let light_data = LightData::of_all(&scene.lights);
-    let tracer = Tracer::new(scene, opts.shadows, light_data.as_deref());
+    let light_data = LightTables::of(scene);
+    let tracer = Tracer::new(scene, opts.shadows, &light_data);
     let label = format!("scalar {}", P::NAME);
 
     render_bands(width, height, 1, opts, &label, |y, row| {
@@ -54,7 +54,7 @@ where
             for k in 0..n * n {
                 let (ox, oy) = sample_offset(k, n);
                 let ray = cam.primary_ray(x as f32 + ox, y as f32 + oy, footprint);
-                let (o, d, ddx, ddy) = (ray.origin, ray.dir, ray.ddx, ray.ddy);
+                let (o, d) = (ray.origin, ray.dir);
                 let dirs = [d];
                 let c = match scene.intersect_camera(o, d, ray.tmin, ray.tmax) {
                     None => {
@@ -62,7 +62,7 @@ where
                         to_rgb(shade_lanes::<P, S, L>(tracer, &lanes, Depth::default()))
                     }
                     Some(h) => {
-                        let hits = [scene.surface_hit(&h, o, d, Some((ddx, ddy)))];
+                        let hits = [scene.surface_hit(&h, o, d, Some(ray.differential()))];
                         let lanes = Lanes { hits: &hits, dirs: &dirs, active: 1, hit: 1, camera: true };
                         if wants_derivs[hits[0].surface as usize] {
                             to_rgb(shade_lanes::<D, S, L>(tracer, &lanes, Depth::default()))

@@ -23,7 +23,7 @@ float anysl_filtered_square(float x)
 }
 
 /*
- * The matte part of the illumination models (common.rs `Finish::matte_part`):
+ * The matte illumination model (common.rs `Finish::matte_part`):
  *   Ct·(Ka·ambient() + Kd·diffuse(Nf)), not yet multiplied by Os.
  */
 color anysl_matte(normal Nf; color Ct; uniform float Ka, Kd)
@@ -32,28 +32,21 @@ color anysl_matte(normal Nf; color Ct; uniform float Ka, Kd)
 }
 
 /*
- * The specular part (common.rs `Finish::specular_part`):
- *   specularcolor·Ks·specular(Nf, V, roughness). Ks is uniform: with Ks == 0 the specular
- * light loop is skipped (a branch on a parameter, not on a point).
- */
-color anysl_specular(normal Nf; vector V; uniform float Ks, roughness; uniform color specularcolor)
-{
-    color spec = 0;
-    if (Ks != 0)
-        spec = specular(Nf, V, roughness);
-    return specularcolor * Ks * spec;
-}
-
-/*
- * The plastic illumination model (common.rs `Finish::plastic`):
- *   Ct·(Ka·ambient() + Kd·diffuse(Nf)) + specularcolor·Ks·specular(Nf, V, roughness),
- * not yet multiplied by Os: the matte part plus the specular part.
+ * The plastic illumination model (common.rs `Finish::plastic`): the matte part plus
+ *   specularcolor·Ks·specular(Nf, V, roughness),
+ * not yet multiplied by Os. Ks is uniform: with Ks == 0 the specular light loop is
+ * skipped (a branch on a parameter, not on a point). The matte part is written out rather
+ * than called: the JIT fuses the `specular` loop with the `ambient`/`diffuse` loop that
+ * follows it within one function body.
  */
 color anysl_plastic(normal Nf; vector V; color Ct;
                     uniform float Ka, Kd, Ks, roughness;
                     uniform color specularcolor)
 {
-    return anysl_matte(Nf, Ct, Ka, Kd) + anysl_specular(Nf, V, Ks, roughness, specularcolor);
+    color spec = 0;
+    if (Ks != 0)
+        spec = specular(Nf, V, roughness);
+    return Ct * (Ka * ambient() + Kd * diffuse(Nf)) + specularcolor * Ks * spec;
 }
 
 #endif /* ANYSL_H */

@@ -8,7 +8,7 @@ use crate::types::BaseType;
 use anysl_core::exec::INTERVAL_LOOP_LIMIT;
 use anysl_core::prelude::*;
 use anysl_core::shader::{ParamError, ParamInfo, ParamType, ParamValue, ShaderMeta, Storage};
-use anysl_core::{Erased, ErasedContext};
+use anysl_core::{Erased, ErasedContext, Spaces};
 use std::any::Any;
 use std::cell::RefCell;
 use std::ops::Range;
@@ -818,14 +818,18 @@ impl DisplacementShader for InterpShader {
 /// its parameter values); the program's kind decides which shader trait it is used through.
 pub type InterpLight = InterpShader;
 
-/// The context a light shader runs in: only `Ps` is known.
-struct LightCtx<F: ShadingFloat> {
+/// The context a light shader runs in: `Ps` and the named spaces.
+struct LightCtx<'s, F: ShadingFloat> {
     g: Globals<F>,
+    spaces: &'s Spaces,
 }
 
-impl<F: ShadingFloat> ShadingContext<F> for LightCtx<F> {
+impl<F: ShadingFloat> ShadingContext<F> for LightCtx<'_, F> {
     fn globals(&self) -> &Globals<F> {
         &self.g
+    }
+    fn spaces(&self) -> &Spaces {
+        self.spaces
     }
     fn illuminance<B: FnMut(&mut Exec<F>, Vec3<F>, Color<F>)>(
         &mut self,
@@ -867,6 +871,14 @@ impl LightShader for InterpShader {
     }
 
     fn light<F: ShadingFloat>(&self, e: &mut Exec<F>, ps: Vec3<F>) -> LightOutput<F> {
+        self.light_in(e, ps, Spaces::standard())
+    }
+}
+
+impl InterpShader {
+    /// [`LightShader::light`] with the named spaces `spaces` (a light placed in a scene sees
+    /// its own "shader" space, the space current where it was declared).
+    pub fn light_in<F: ShadingFloat>(&self, e: &mut Exec<F>, ps: Vec3<F>, spaces: &Spaces) -> LightOutput<F> {
         let p = &*self.program;
         let zero = F::c(0.0);
         let g = Globals {
@@ -886,7 +898,7 @@ impl LightShader for InterpShader {
             Cs: Color::zero(),
             Os: Color::zero(),
         };
-        let mut ctx = LightCtx { g };
+        let mut ctx = LightCtx { g, spaces };
         let mut fr = take_frame::<F>(p, 1);
         for (i, loc) in p.params.iter().enumerate() {
             if let Some(c) = self.values.get(i) {
