@@ -6,6 +6,13 @@
 //! `cargo bench -p anysl-jit --bench workload_jit`; `SHADERS=plastic,wood` selects,
 //! `ROWS=aot-x8,jit-x8` selects rows, `OPT=3` compiles at LLVM's `default<O3>` (`POINTS_OPT=2` the points entries at level 2; 3 by default), `INLINE_NOISE=1` emits the noise as IR (`JitOptions::inline_noise`); `DUMP_IR=DIR` writes each variant's optimized LLVM IR
 //! to `DIR/<shader>-<variant>.ll`.
+//!
+//! `COUNT_OPS=1` also compiles each shader with `JitOptions::count_ops` and shades the same
+//! inputs once per JIT row, untimed, printing the operations the optimized code executed
+//! (`anysl_jit::opcount`): vector floating-point operations per hit point and per packet
+//! (one packet = the variant's native lanes, 8 or 16; the padding points are shaded too and
+//! counted, so per hit point is the total over 183 020), vector integer/mask operations,
+//! scalar float operations and calls into Rust per hit point.
 
 use anysl_core::LightData;
 use anysl_jit::{JitOptions, JitShader, Variant};
@@ -43,44 +50,105 @@ fn main() {
                 eprintln!("wrote {path}");
             }
         }
-        let (sc, sh, l, jit) = (&scene, &sh, &lights, &jit);
-        type P8x4 = Pair<Pair<F32x8>>;
-        type P16x2 = Pair<F32x16>;
-        // The points entry (`JitShader::shade_points`): the loop over the packets compiled
-        // with the shader.
-        fn points<F: anysl_core::ShadingFloat>(
-            sc: &WorkloadScene,
-            jit: &JitShader,
-            l: &[LightData],
-            [r, g, b]: &mut [Vec<f32>; 3],
-        ) {
-            use anysl_jit::rsl::ir::Global;
-            let n = r.len();
-            let mut ctx = anysl_core::PointContext::new(sc.globals::<F>(0), l);
-            let [p, nn, i] = sc.varying_f32(0, n);
-            let varying: [(Global, &[&[f32]]); 4] =
-                [(Global::P, &p), (Global::N, &nn), (Global::Ng, &nn), (Global::I, &i)];
-            assert!(jit
-                .shade_points::<F, _>(&mut ctx, &varying, &mut [r.as_mut_slice(), g.as_mut_slice(), b.as_mut_slice()])
-                .expect("points entry"));
-        }
-        let runs: [ProbeRun<'_>; 10] = [
-            ("aot-x8", Box::new(|[r, g, b]: &mut _| sc.shade::<F32x8, LightData>(sh, l, 0, [r, g, b]))),
-            ("jit-x8", Box::new(|[r, g, b]: &mut _| sc.shade_surface::<F32x8, _, LightData>(jit, l, 0, [r, g, b]))),
-            ("aot-x16", Box::new(|[r, g, b]: &mut _| sc.shade::<F32x16, LightData>(sh, l, 0, [r, g, b]))),
-            ("jit-x16", Box::new(|[r, g, b]: &mut _| sc.shade_surface::<F32x16, _, LightData>(jit, l, 0, [r, g, b]))),
-            ("aot-x8x4", Box::new(|[r, g, b]: &mut _| sc.shade::<P8x4, LightData>(sh, l, 0, [r, g, b]))),
-            ("jit-x8x4", Box::new(|[r, g, b]: &mut _| sc.shade_surface::<P8x4, _, LightData>(jit, l, 0, [r, g, b]))),
-            ("aot-x16x2", Box::new(|[r, g, b]: &mut _| sc.shade::<P16x2, LightData>(sh, l, 0, [r, g, b]))),
-            ("jit-x16x2", Box::new(|[r, g, b]: &mut _| sc.shade_surface::<P16x2, _, LightData>(jit, l, 0, [r, g, b]))),
-            ("jitp-x8x4", Box::new(|out: &mut _| points::<P8x4>(sc, jit, l, out))),
-            ("jitp-x16x2", Box::new(|out: &mut _| points::<P16x2>(sc, jit, l, out))),
-        ];
         let rows = env("ROWS");
-        let runs: Vec<ProbeRun<'_>> = runs
-            .into_iter()
-            .filter(|(label, _)| rows.as_deref().is_none_or(|r| r.split(',').any(|x| x == *label)))
-            .collect();
-        reference::probe_rounds(sc, name, &reference, &runs, rounds);
+        let selected = |label: &str| rows.as_deref().is_none_or(|r| r.split(',').any(|x| x == label));
+        let runs: Vec<ProbeRun<'_>> =
+            probe_runs(&scene, &sh, &lights, &jit).into_iter().filter(|(label, _)| selected(label)).collect();
+        reference::probe_rounds(&scene, name, &reference, &runs, rounds);
+        if env("COUNT_OPS").is_some_and(|s| s == "1") {
+            let counting = JitShader::from_source(
+                sh.sl_file_name(),
+                sh.sl_source(),
+                &[],
+                JitOptions { count_ops: true, ..jit.opts.clone() },
+            )
+            .expect("compiles");
+            count_ops(&scene, name, &reference, &probe_runs(&scene, &sh, &lights, &counting), &counting, &selected);
+        }
+    }
+}
+
+type P8x4 = Pair<Pair<F32x8>>;
+type P16x2 = Pair<F32x16>;
+
+/// The JIT rows' variants: the code whose operations a row's run counts.
+const JIT_ROWS: [(&str, Variant); 6] = [
+    ("jit-x8", Variant::X8),
+    ("jit-x16", Variant::X16),
+    ("jit-x8x4", Variant::X8x4),
+    ("jit-x16x2", Variant::X16x2),
+    ("jitp-x8x4", Variant::X8x4),
+    ("jitp-x16x2", Variant::X16x2),
+];
+
+/// Every row: the ahead-of-time shader `sh` and the JIT-compiled `jit` at each packet shape.
+fn probe_runs<'a>(
+    sc: &'a WorkloadScene,
+    sh: &'a WorkloadShader,
+    l: &'a [LightData],
+    jit: &'a JitShader,
+) -> [ProbeRun<'a>; 10] {
+    [
+        ("aot-x8", Box::new(|[r, g, b]: &mut _| sc.shade::<F32x8, LightData>(sh, l, 0, [r, g, b]))),
+        ("jit-x8", Box::new(|[r, g, b]: &mut _| sc.shade_surface::<F32x8, _, LightData>(jit, l, 0, [r, g, b]))),
+        ("aot-x16", Box::new(|[r, g, b]: &mut _| sc.shade::<F32x16, LightData>(sh, l, 0, [r, g, b]))),
+        ("jit-x16", Box::new(|[r, g, b]: &mut _| sc.shade_surface::<F32x16, _, LightData>(jit, l, 0, [r, g, b]))),
+        ("aot-x8x4", Box::new(|[r, g, b]: &mut _| sc.shade::<P8x4, LightData>(sh, l, 0, [r, g, b]))),
+        ("jit-x8x4", Box::new(|[r, g, b]: &mut _| sc.shade_surface::<P8x4, _, LightData>(jit, l, 0, [r, g, b]))),
+        ("aot-x16x2", Box::new(|[r, g, b]: &mut _| sc.shade::<P16x2, LightData>(sh, l, 0, [r, g, b]))),
+        ("jit-x16x2", Box::new(|[r, g, b]: &mut _| sc.shade_surface::<P16x2, _, LightData>(jit, l, 0, [r, g, b]))),
+        ("jitp-x8x4", Box::new(|out: &mut _| points::<P8x4>(sc, jit, l, out))),
+        ("jitp-x16x2", Box::new(|out: &mut _| points::<P16x2>(sc, jit, l, out))),
+    ]
+}
+
+/// The points entry (`JitShader::shade_points`): the loop over the packets compiled with the
+/// shader.
+fn points<F: anysl_core::ShadingFloat>(
+    sc: &WorkloadScene,
+    jit: &JitShader,
+    l: &[LightData],
+    [r, g, b]: &mut [Vec<f32>; 3],
+) {
+    use anysl_jit::rsl::ir::Global;
+    let n = r.len();
+    let mut ctx = anysl_core::PointContext::new(sc.globals::<F>(0), l);
+    let [p, nn, i] = sc.varying_f32(0, n);
+    let varying: [(Global, &[&[f32]]); 4] = [(Global::P, &p), (Global::N, &nn), (Global::Ng, &nn), (Global::I, &i)];
+    assert!(jit
+        .shade_points::<F, _>(&mut ctx, &varying, &mut [r.as_mut_slice(), g.as_mut_slice(), b.as_mut_slice()])
+        .expect("points entry"));
+}
+
+/// One untimed call of each selected JIT row of `runs` (compiled with `count_ops`), the
+/// operations it executed printed per hit point and per packet; the image is checked against
+/// the reference as the timed rows' are (counting must not change what is computed).
+fn count_ops(
+    sc: &WorkloadScene,
+    shader: &str,
+    reference: &[f32],
+    runs: &[ProbeRun<'_>],
+    jit: &JitShader,
+    selected: &dyn Fn(&str) -> bool,
+) {
+    let n = sc.padded_len();
+    for (label, f) in runs {
+        let Some(&(_, v)) = JIT_ROWS.iter().find(|(l, _)| l == label).filter(|(l, _)| selected(l)) else {
+            continue;
+        };
+        let mut out = [vec![0.0; n], vec![0.0; n], vec![0.0; n]];
+        f(&mut out); // compiles the variant (and the points entry)
+        jit.reset_op_counts();
+        f(&mut out);
+        let c = jit.op_counts(v).expect("compiled with count_ops");
+        let err = reference::image_error(&sc.to_image(&out), reference).max_abs_err;
+        let [vec, vint, scalar, calls] = c.per(sc.n_hit() as u64);
+        let packets = (n / v.native_lanes() as usize) as u64;
+        println!(
+            "{shader:<8} {label:<10} ops per hit point: vector {vec:8.2} vector-int {vint:8.2} scalar {scalar:8.2} \
+             calls {calls:6.3}; vector per {}-lane packet {:8.1}; max_abs_err {err:.3e}",
+            v.native_lanes(),
+            c.per(packets)[0],
+        );
     }
 }

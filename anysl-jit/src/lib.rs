@@ -19,15 +19,18 @@
 //! parameters, constant folding, DCE, uniform/varying and derivative analyses) → LLVM IR
 //! generation ([`codegen`]) → the new pass manager ([`pass_pipeline`]) → MCJIT with the host's
 //! `target-cpu`/`target-features`. [`CompileStats`] reports the time and the instruction
-//! counts of each stage.
+//! counts of each stage; with [`JitOptions::count_ops`] the code counts the operations it
+//! executes ([`opcount`]).
 
 pub mod abi;
 pub mod check;
 pub mod codegen;
+pub mod opcount;
 pub mod rt;
 mod shader;
 
 pub use anysl_rsl as rsl;
+pub use opcount::OpCounts;
 pub use shader::{variant_of, JitShader, PointOutputs};
 
 use abi::{PointsFn, ShadeFn};
@@ -189,6 +192,11 @@ pub struct JitOptions {
     /// ([`abi::output_params`]), for tools that read them ([`JitShader::eval_point`]); the
     /// caller's output buffer must have room for them.
     pub output_params: bool,
+    /// Count the operations the optimized code executes ([`opcount`]): each basic block
+    /// adds its vector, scalar and call counts to counters the compiled code owns
+    /// ([`CompiledShader::op_counts`], [`JitShader::op_counts`]). For measuring, not for
+    /// shading fast: every block executed pays an atomic add per kind it counts.
+    pub count_ops: bool,
 }
 
 impl JitOptions {
@@ -204,6 +212,7 @@ impl JitOptions {
             inline_noise: false,
             points_opt_level: 3,
             output_params: false,
+            count_ops: false,
         }
     }
 }
@@ -252,6 +261,9 @@ struct Owned {
     ee: Option<ExecutionEngine<'static>>,
     module: Option<inkwell::module::Module<'static>>,
     ctx: Option<Box<Context>>,
+    /// The counters instrumented code increments ([`JitOptions::count_ops`]); their address
+    /// is compiled into the code.
+    counters: Option<Box<opcount::OpCounters>>,
 }
 
 impl Drop for Owned {
@@ -260,6 +272,18 @@ impl Drop for Owned {
         self.module.take();
         self.ee.take();
         self.ctx.take();
+    }
+}
+
+impl Owned {
+    fn op_counts(&self) -> Option<OpCounts> {
+        self.counters.as_ref().map(|c| c.get())
+    }
+
+    fn reset_op_counts(&self) {
+        if let Some(c) = &self.counters {
+            c.reset();
+        }
     }
 }
 
@@ -279,6 +303,20 @@ pub struct CompiledShader {
     /// The optimized LLVM IR, when requested.
     pub llvm_ir: Option<String>,
     _owned: Owned,
+}
+
+impl CompiledShader {
+    /// The operations counted since compilation or the last reset; `None` unless compiled
+    /// with [`JitOptions::count_ops`].
+    #[must_use]
+    pub fn op_counts(&self) -> Option<OpCounts> {
+        self._owned.op_counts()
+    }
+
+    /// Sets the operation counts to zero.
+    pub fn reset_op_counts(&self) {
+        self._owned.reset_op_counts();
+    }
 }
 
 impl fmt::Debug for CompiledShader {
@@ -404,6 +442,20 @@ pub struct CompiledPoints {
     _owned: Owned,
 }
 
+impl CompiledPoints {
+    /// The operations counted since compilation or the last reset; `None` unless compiled
+    /// with [`JitOptions::count_ops`].
+    #[must_use]
+    pub fn op_counts(&self) -> Option<OpCounts> {
+        self._owned.op_counts()
+    }
+
+    /// Sets the operation counts to zero.
+    pub fn reset_op_counts(&self) {
+        self._owned.reset_op_counts();
+    }
+}
+
 impl fmt::Debug for CompiledPoints {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.debug_struct("CompiledPoints")
@@ -524,11 +576,25 @@ fn build(
     llmod.run_passes(pipeline, &tm, PassBuilderOptions::create()).map_err(|e| JitError(e.to_string()))?;
     stats.insts.push(("llvm-optimized".into(), count_insts(&llmod)));
     stats.times_ms.push(("optimize", t2.elapsed().as_secs_f64() * 1e3));
+    let counters = opts.count_ops.then(|| {
+        // After optimization, so the counts are the optimized code's; one vector operation
+        // per native register's lanes (16 for the one-lane variants, whose vectors are
+        // narrower than a register).
+        let c = Box::new(opcount::OpCounters::default());
+        let unit = if variant.native_lanes() == 1 { 16 } else { variant.native_lanes() };
+        opcount::instrument(cref, &llmod, &c, unit);
+        c
+    });
+    if counters.is_some() {
+        if let Err(e) = llmod.verify() {
+            return Err(JitError(format!("invalid LLVM IR after counting: {}", e.to_string())));
+        }
+    }
     let llvm_ir = keep_ir.then(|| llmod.print_to_string().to_string());
 
     let t3 = Instant::now();
     let ee = llmod.create_jit_execution_engine(level).map_err(|e| JitError(e.to_string()))?;
     let addr = ee.get_function_address(entry).map_err(|e| JitError(e.to_string()))?;
     stats.times_ms.push(("codegen", t3.elapsed().as_secs_f64() * 1e3));
-    Ok((addr, stats, llvm_ir, Owned { ee: Some(ee), module: Some(llmod), ctx: Some(ctx) }))
+    Ok((addr, stats, llvm_ir, Owned { ee: Some(ee), module: Some(llmod), ctx: Some(ctx), counters }))
 }

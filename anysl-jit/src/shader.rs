@@ -4,7 +4,9 @@
 use crate::abi::JitFloat;
 use crate::abi::{GLOBAL_ORDER, GLOBAL_VALUES};
 use crate::rt::{cast, HostCtx, HostTable};
-use crate::{compile, compile_points, CompiledPoints, CompiledShader, JitError, JitOptions, PointsLayout, Variant};
+use crate::{
+    compile, compile_points, CompiledPoints, CompiledShader, JitError, JitOptions, OpCounts, PointsLayout, Variant,
+};
 use anysl_ad::Dual;
 use anysl_core::points::{PointSet, ShadeOut};
 use anysl_core::prelude::*;
@@ -384,6 +386,47 @@ impl JitShader {
                 host,
                 self.param_block.as_ptr(),
             );
+        }
+    }
+
+    /// The operations executed so far by the code compiled for variant `v` — its
+    /// per-packet function ([`SurfaceShader::shade`]), its points entries
+    /// ([`JitShader::shade_points`]) and [`JitShader::eval_point`]'s, summed — since
+    /// compilation or [`JitShader::reset_op_counts`]; `None` unless compiled with
+    /// [`JitOptions::count_ops`]. Shade with one variant between resets to attribute the
+    /// counts to one run. See [`crate::opcount`] for what is counted.
+    #[must_use]
+    pub fn op_counts(&self, v: Variant) -> Option<OpCounts> {
+        if !self.opts.count_ops {
+            return None;
+        }
+        let mut n = OpCounts::default();
+        for slot in [&self.variants[v.index()], &self.eval_variants[v.index()]] {
+            if let Some(Ok(c)) = slot.get() {
+                n += c.op_counts().unwrap_or_default();
+            }
+        }
+        let cache = self.points.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+        for (_, _, c) in cache.iter().filter(|(cv, _, _)| *cv == v) {
+            if let Ok(c) = c {
+                n += c.op_counts().unwrap_or_default();
+            }
+        }
+        Some(n)
+    }
+
+    /// Sets the operation counts of every compiled variant to zero ([`JitShader::op_counts`]).
+    pub fn reset_op_counts(&self) {
+        for slot in self.variants.iter().chain(&self.eval_variants) {
+            if let Some(Ok(c)) = slot.get() {
+                c.reset_op_counts();
+            }
+        }
+        let cache = self.points.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+        for (_, _, c) in cache.iter() {
+            if let Ok(c) = c {
+                c.reset_op_counts();
+            }
         }
     }
 
