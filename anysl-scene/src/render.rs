@@ -22,7 +22,7 @@ use crate::build::{Film, FrameDesc, ShaderCall};
 use crate::film::{reconstruct, SampleWindow};
 use crate::lights::{scene_light, SceneLight};
 use crate::shaders::{apply_params, ShaderLibrary};
-use crate::surface::SceneSurface;
+use crate::surface::{SceneSurface, Volumes};
 use anysl_core::{Matrix4, Spaces, SurfaceShader};
 use anysl_renderers::Projection;
 use anysl_renderers::{Camera, Image, Scene};
@@ -106,8 +106,10 @@ pub struct FrameScene<S> {
     pub scene: Scene<SceneSurface<S>, SceneLight>,
     /// The samples' window.
     pub window: SampleWindow,
-    /// Warnings (parameters that do not fit, unsupported lights).
+    /// Warnings (parameters that do not fit, unsupported lights, shaders left out).
     pub warnings: Vec<String>,
+    /// The imager shader, run on the filtered pixels by [`FrameScene::finish`].
+    pub imager: Option<InterpShader>,
 }
 
 /// Builds the renderer scene of `frame` with surface shaders from `surfaces`.
@@ -130,15 +132,31 @@ pub fn frame_scene<S: SurfaceShader + Clone>(
         let mut uses = surfaces.uses_spaces.get(&call.name).copied().unwrap_or(false);
         let displacement = match frame.displacements.get(k).and_then(Option::as_ref) {
             Some(d) => {
-                let (shader, w, names_space) = displacement_shader(d, &mut surfaces.library)?;
+                let (shader, w, names_space) = stage_shader(d, &mut surfaces.library, Stage::Displacement)?;
                 warnings.extend(w);
                 uses |= names_space;
                 Some(shader)
             }
             None => None,
         };
+        let calls = frame.volumes.get(k).cloned().unwrap_or_default();
+        let mut volume = |call: &Option<ShaderCall>, stage: Stage| -> Result<Option<InterpShader>, String> {
+            let Some(call) = call else { return Ok(None) };
+            match optional_stage_shader(call, &mut surfaces.library, stage, &mut warnings)? {
+                Some((shader, names_space)) => {
+                    uses |= names_space;
+                    Ok(Some(shader))
+                }
+                None => Ok(None),
+            }
+        };
+        let volumes = Volumes {
+            atmosphere: volume(&calls.atmosphere, Stage::Atmosphere)?,
+            interior: volume(&calls.interior, Stage::Interior)?,
+            exterior: volume(&calls.exterior, Stage::Exterior)?,
+        };
         spacey.push(uses);
-        shaders.push(SceneSurface { surface, displacement });
+        shaders.push(SceneSurface { surface, displacement, volumes });
     }
     let mut lights = Vec::new();
     // Frame light k → its index in `lights` (none when it is left out).
@@ -158,7 +176,11 @@ pub fn frame_scene<S: SurfaceShader + Clone>(
     }
     if shaders.is_empty() {
         // A world without primitives still needs a shader slot.
-        shaders.push(SceneSurface { surface: surfaces.instance("defaultsurface")?, displacement: None });
+        shaders.push(SceneSurface {
+            surface: surfaces.instance("defaultsurface")?,
+            displacement: None,
+            volumes: Volumes::default(),
+        });
         spacey.push(false);
     }
     let window = SampleWindow::of(&frame.film);
@@ -172,29 +194,106 @@ pub fn frame_scene<S: SurfaceShader + Clone>(
     scene.surface_lights = surface_lights;
     // RenderMan has no sky: a ray that meets nothing (`trace`, a path tracer's bounce) sees black.
     scene.sky = anysl_renderers::Sky { horizon: [0.0; 3], zenith: [0.0; 3], visible_to_camera: false };
-    Ok(FrameScene { scene, window, warnings })
+    let imager = match &frame.imager {
+        Some(call) => optional_stage_shader(call, &mut surfaces.library, Stage::Imager, &mut warnings)?.map(|s| s.0),
+        None => None,
+    };
+    Ok(FrameScene { scene, window, warnings, imager })
 }
 
-/// The displacement shader of `call` (run by the interpreter), its parameter warnings, and
+/// The shader requests besides `Surface` and `LightSource`, each run by the interpreter.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Stage {
+    Displacement,
+    Atmosphere,
+    Interior,
+    Exterior,
+    Imager,
+}
+
+impl Stage {
+    fn request(self) -> &'static str {
+        match self {
+            Stage::Displacement => "Displacement",
+            Stage::Atmosphere => "Atmosphere",
+            Stage::Interior => "Interior",
+            Stage::Exterior => "Exterior",
+            Stage::Imager => "Imager",
+        }
+    }
+
+    fn kind(self) -> anysl_rsl::ir::ShaderKind {
+        use anysl_rsl::ir::ShaderKind as K;
+        match self {
+            Stage::Displacement => K::Displacement,
+            Stage::Atmosphere | Stage::Interior | Stage::Exterior => K::Volume,
+            Stage::Imager => K::Imager,
+        }
+    }
+}
+
+/// Where a shader request is, for messages (`file:line: `, or nothing).
+fn at(call: &ShaderCall) -> String {
+    call.loc.as_ref().map_or_else(String::new, |l| format!("{l}: "))
+}
+
+/// The shader of `call` for `stage` (run by the interpreter), its parameter warnings, and
 /// whether it names a coordinate system.
-fn displacement_shader(
+///
+/// # Errors
+/// The shader is not found, does not compile or is of another kind.
+fn stage_shader(
     call: &ShaderCall,
     library: &mut ShaderLibrary,
+    stage: Stage,
 ) -> Result<(InterpShader, Vec<String>, bool), String> {
     let name = &call.name;
-    let module = library.module(name)?;
-    if module.kind != anysl_rsl::ir::ShaderKind::Displacement {
+    let module = library.module(name).map_err(|e| format!("{}{e}", at(call)))?;
+    if module.kind != stage.kind() {
+        let kind = |k: anysl_rsl::ir::ShaderKind| format!("{k:?}").to_lowercase();
         return Err(format!(
-            "shader \"{name}\" is a {} shader; Displacement needs a displacement shader",
-            format!("{:?}", module.kind).to_lowercase()
+            "{}shader \"{name}\" is a {} shader; {} needs a {} shader",
+            at(call),
+            kind(module.kind),
+            stage.request(),
+            kind(stage.kind())
         ));
     }
     let names_space = module.uses_spaces();
     let module = anysl_rsl::passes::optimize(module, &anysl_rsl::passes::PassOptions::default());
-    let program = Program::new(module).map_err(|e| format!("displacement shader \"{name}\": {e}"))?;
+    let program =
+        Program::new(module).map_err(|e| format!("{}{} shader \"{name}\": {e}", at(call), kind_word(stage)))?;
     let mut shader = InterpShader::new(Arc::new(program));
     let warnings = apply_params(&mut shader, call);
     Ok((shader, warnings, names_space))
+}
+
+fn kind_word(stage: Stage) -> &'static str {
+    match stage.kind() {
+        anysl_rsl::ir::ShaderKind::Displacement => "displacement",
+        anysl_rsl::ir::ShaderKind::Imager => "imager",
+        _ => "volume",
+    }
+}
+
+/// [`stage_shader`] for a request whose shader may be missing: a shader not found is left
+/// out with a warning naming it (`None`); its parameter warnings join `warnings`.
+///
+/// # Errors
+/// The shader is found but does not compile or is of another kind.
+fn optional_stage_shader(
+    call: &ShaderCall,
+    library: &mut ShaderLibrary,
+    stage: Stage,
+    warnings: &mut Vec<String>,
+) -> Result<Option<(InterpShader, bool)>, String> {
+    if let Err(e) = library.find(&call.name) {
+        warnings.push(format!("{}{} {e}; left out", at(call), stage.request()));
+        return Ok(None);
+    }
+    let (shader, w, names_space) = stage_shader(call, library, stage)?;
+    warnings.extend(w);
+    Ok(Some((shader, names_space)))
 }
 
 /// A glam matrix (column vectors) as an RSL one (row vectors, row by row).
@@ -359,7 +458,8 @@ fn place_spaces<S: Clone>(
 
 impl<S> FrameScene<S> {
     /// The frame's pixels (crop window, row-major RGBA before exposure, alpha = coverage)
-    /// from the renderer's `image` of the samples (rendered at one sample per pixel).
+    /// from the renderer's `image` of the samples (rendered at one sample per pixel), after
+    /// the imager shader if the frame has one.
     ///
     /// # Panics
     /// When `image` is not the size of the sample grid.
@@ -377,6 +477,10 @@ impl<S> FrameScene<S> {
                 [r, g, b, if hit.is_some() { 1.0 } else { 0.0 }]
             })
             .collect();
-        reconstruct(film, &self.window, &samples)
+        let mut pixels = reconstruct(film, &self.window, &samples);
+        if let Some(imager) = &self.imager {
+            crate::film::run_imager(imager, film, &mut pixels);
+        }
+        pixels
     }
 }
