@@ -250,9 +250,14 @@ fn stage_shader(
     let name = &call.name;
     let module = library.module(name).map_err(|e| format!("{}{e}", at(call)))?;
     if module.kind != stage.kind() {
-        let kind = |k: anysl_rsl::ir::ShaderKind| format!("{k:?}").to_lowercase();
+        // "a surface shader", "an imager shader".
+        let kind = |k: anysl_rsl::ir::ShaderKind| {
+            let k = format!("{k:?}").to_lowercase();
+            let article = if k.starts_with(['a', 'e', 'i', 'o', 'u']) { "an" } else { "a" };
+            format!("{article} {k} shader")
+        };
         return Err(format!(
-            "{}shader \"{name}\" is a {} shader; {} needs a {} shader",
+            "{}shader \"{name}\" is {}; {} needs {}",
             at(call),
             kind(module.kind),
             stage.request(),
