@@ -1,7 +1,7 @@
 //! Volume shaders (`Atmosphere`, `Interior`, `Exterior`) and imager shaders in RIB scenes, with
 //! known answers: `fog` attenuates by exp(-d/distance), `depthcue` blends linearly between its
 //! distances, a ray-marched smoke of uniform density gives the same exponential, an `Interior`
-//! acts on the chord a traced ray crosses, the `background` imager fills exactly the uncovered
+//! acts on the chord a traced ray crosses and an `Exterior` on its way beyond, the `background` imager fills exactly the uncovered
 //! part of each pixel and a vignette imager gives its formula.
 
 use anysl_renderers::{render_packet, render_pbrt, render_scalar, Integrator, RenderOptions};
@@ -168,13 +168,18 @@ fn a_ray_marched_smoke_of_uniform_density_is_exponential() {
 }
 
 #[test]
-fn an_interior_acts_on_the_chord_a_traced_ray_crosses() {
+fn interior_and_exterior_act_on_the_segments_a_traced_ray_crosses() {
     // A sphere of radius 1.5 at z = 5 that shows what lies behind it, filled with fog, before a
-    // white plane; outside the sphere's outline the plane is seen directly.
-    let (r, distance) = (1.5f32, 2.0f32);
+    // white plane with fog outside it. A camera ray meeting the sphere traces through it: the
+    // chord inside gets the sphere's Interior, the way on to the plane (reached from its front)
+    // the plane's Exterior. Outside the sphere's outline the camera sees the plane directly, on
+    // a camera ray, where neither applies. (The polygon as written faces away from the camera:
+    // `ReverseOrientation` turns its outside, where its normal points, towards the sphere.)
+    let (r, inner, outer) = (1.5f32, 2.0f32, 8.0f32);
     let rib = format!(
-        "{ORTHO}WorldBegin AttributeBegin Surface \"seethrough\" Interior \"fog\" \"distance\" {distance} \
-         Translate 0 0 5 Sphere {r} -{r} {r} 360 AttributeEnd\n{}WorldEnd",
+        "{ORTHO}WorldBegin AttributeBegin Surface \"seethrough\" Interior \"fog\" \"distance\" {inner} \
+         Translate 0 0 5 Sphere {r} -{r} {r} 360 AttributeEnd\n\
+         AttributeBegin Exterior \"fog\" \"distance\" {outer} ReverseOrientation {}AttributeEnd WorldEnd",
         plane(9.0, "1 1 1")
     );
     for renderer in ALL {
@@ -187,7 +192,13 @@ fn an_interior_acts_on_the_chord_a_traced_ray_crosses() {
                 if h2.abs() < 0.1 {
                     continue;
                 }
-                let want = if h2 > 0.0 { (-2.0 * h2.sqrt() / distance).exp() } else { 1.0 };
+                let want = if h2 > 0.0 {
+                    let h = h2.sqrt();
+                    // The chord 2h, then from the sphere's back (z = 5 + h) to the plane.
+                    (-2.0 * h / inner).exp() * (-(4.0 - h) / outer).exp()
+                } else {
+                    1.0
+                };
                 let got = px[j * 16 + i][0];
                 assert!((got - want).abs() < 2e-2, "{renderer:?} pixel ({i}, {j}): {got}, expected {want}");
             }
