@@ -69,6 +69,16 @@ pub trait ShadingContext<F: ShadingFloat> {
     fn globals_mut(&mut self) -> Option<&mut Globals<F>> {
         None
     }
+
+    /// How many `trace` calls deep the ray that reached the shaded points is: 0 for camera
+    /// rays (and their continuation through transparent surfaces), 1 for a ray `trace`d from a
+    /// point a camera ray reached, … `None` (the default): the points were not reached along a
+    /// ray of a rendered image (a material probe, a test point), so volume shaders, which act
+    /// on ray segments, do not apply.
+    #[inline(always)]
+    fn ray_depth(&self) -> Option<u32> {
+        None
+    }
 }
 
 /// [`ShadingContext`] without generic methods, so that it can be a trait object: code that
@@ -93,6 +103,8 @@ pub trait ErasedContext<F: ShadingFloat> {
     fn lights_as_data_dyn(&self) -> Option<&[LightData]>;
     /// [`ShadingContext::spaces`].
     fn spaces_dyn(&self) -> &Spaces;
+    /// [`ShadingContext::ray_depth`].
+    fn ray_depth_dyn(&self) -> Option<u32>;
 }
 
 impl<F: ShadingFloat, C: ShadingContext<F>> ErasedContext<F> for C {
@@ -118,6 +130,9 @@ impl<F: ShadingFloat, C: ShadingContext<F>> ErasedContext<F> for C {
     }
     fn spaces_dyn(&self) -> &Spaces {
         self.spaces()
+    }
+    fn ray_depth_dyn(&self) -> Option<u32> {
+        self.ray_depth()
     }
 }
 
@@ -148,6 +163,9 @@ impl<F: ShadingFloat> ShadingContext<F> for Erased<'_, F> {
     }
     fn spaces(&self) -> &Spaces {
         self.0.spaces_dyn()
+    }
+    fn ray_depth(&self) -> Option<u32> {
+        self.0.ray_depth_dyn()
     }
 }
 

@@ -41,8 +41,8 @@ pub use light::{
     LightOutput, LightQuery, LightSource,
 };
 pub use shader::{
-    DisplacementShader, LightShader, ParamError, ParamField, ParamInfo, ParamType, ParamValue, Shader, ShaderKind,
-    ShaderMeta, Storage, SurfaceShader, SurfaceVisitor,
+    DisplacementShader, ImagerPixel, ImagerShader, LightShader, ParamError, ParamField, ParamInfo, ParamType,
+    ParamValue, Shader, ShaderKind, ShaderMeta, Storage, SurfaceShader, SurfaceVisitor, VolumeShader,
 };
 pub use spaces::{Spaces, STANDARD_SPACES};
 pub use vec::{Color, Matrix4, Vec3};

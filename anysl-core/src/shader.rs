@@ -6,7 +6,7 @@ use crate::exec::Exec;
 use crate::float::ShadingFloat;
 use crate::globals::SurfaceOutput;
 use crate::light::{Emission, LightData, LightOutput, LightSource};
-use crate::vec::Vec3;
+use crate::vec::{Color, Vec3};
 use core::fmt;
 
 /// The kind of a shader (RenderMan Interface 3.2 shader types).
@@ -388,6 +388,43 @@ pub trait LightShader: Shader {
 pub trait DisplacementShader: Shader {
     /// Returns the displaced `(P, N)`.
     fn displace<F: ShadingFloat, C: ShadingContext<F>>(&self, ctx: &mut C, e: &mut Exec<F>) -> (Vec3<F>, Vec3<F>);
+}
+
+/// A volume shader (RSL `volume`: an atmosphere, interior or exterior): changes the light
+/// travelling along a ray segment from `E` to `P` (`I = P − E`, its length the segment's) —
+/// `entering` is the `Ci`/`Oi` arriving at `P` (the surface's result), the output what leaves
+/// the segment towards `E`.
+pub trait VolumeShader: Shader {
+    /// The attenuated `Ci`, `Oi` of the live lanes of `e` (the context's globals are the
+    /// segment's `P`, `I`, `E`).
+    fn volume<F: ShadingFloat, C: ShadingContext<F>>(
+        &self,
+        ctx: &mut C,
+        e: &mut Exec<F>,
+        entering: SurfaceOutput<F>,
+    ) -> SurfaceOutput<F>;
+}
+
+/// One pixel (or a vector of pixels) as an imager shader sees and leaves it.
+#[allow(non_snake_case)]
+#[derive(Clone, Copy, Debug)]
+pub struct ImagerPixel<F> {
+    /// The raster position of the pixel centre (`z` = 0).
+    pub P: Vec3<F>,
+    /// The filtered colour (premultiplied by coverage).
+    pub Ci: Color<F>,
+    /// The filtered opacity.
+    pub Oi: Color<F>,
+    /// The fraction of the pixel covered by geometry.
+    pub alpha: F,
+}
+
+/// An imager shader (RSL `imager`): runs on the filtered pixels before exposure and
+/// quantization.
+pub trait ImagerShader: Shader {
+    /// The pixel after the shader (its `Ci`, `Oi`, `alpha`; `P` as given), for the live lanes
+    /// of `e`.
+    fn image<F: ShadingFloat>(&self, e: &mut Exec<F>, pixel: ImagerPixel<F>) -> ImagerPixel<F>;
 }
 
 /// Declares a shader's parameter struct with defaults, metadata and set/get by name.

@@ -4,12 +4,15 @@
 //! each pixel (`PixelSamples`, stratified), over the crop window grown by the filter's
 //! reach ([`SampleWindow`]). The film then *gathers*: each output pixel is the
 //! filter-weighted mean of the samples within `±width/2` of its centre, the kernel applied
-//! separably in x and then in y. Then `Exposure` (`(gain · c)^(1/gamma)`) and `Quantize`
+//! separably in x and then in y. Then the `Imager` shader, if any ([`run_imager`]), then
+//! `Exposure` (`(gain · c)^(1/gamma)`) and `Quantize`
 //! (`round(one · c + dither)` clamped to `[min, max]`, with a dither that depends only on the
 //! pixel, so any subset of frames or a re-run gives identical files).
 
 use crate::build::{DisplayDesc, DisplayFormat, Film, FilterKind, PixelFilter};
+use anysl_core::{Color, ImagerPixel, Vec3};
 use anysl_renderers::CameraSpec;
+use anysl_rsl::back::interp::InterpShader;
 use std::path::Path;
 
 /// The grid of samples the renderer computes for a frame.
@@ -191,6 +194,40 @@ pub fn reconstruct(film: &Film, window: &SampleWindow, samples: &[[f32; 4]]) -> 
         kind,
         ywidth,
     )
+}
+
+/// Pixels an imager shader runs on at once (the interpreter decodes each op once per batch).
+const IMAGER_BATCH: usize = 256;
+
+/// Runs the imager shader on the crop window's filtered pixels (row-major RGBA, alpha =
+/// coverage): each pixel's `P` is the raster position of its centre (`x + ½`, `y + ½`, 0),
+/// `Ci` its colour, `Oi` and `alpha` its alpha; it becomes (`Ci`, `alpha`) as the shader
+/// leaves them. Values that are not finite become 0.
+pub fn run_imager(imager: &InterpShader, film: &Film, pixels: &mut [[f32; 4]]) {
+    let [x0, x1, y0, _] = film.crop_pixels();
+    let w = (x1 - x0).max(1) as usize;
+    let masks = [true; IMAGER_BATCH];
+    for (b, batch) in pixels.chunks_mut(IMAGER_BATCH).enumerate() {
+        let mut px: Vec<ImagerPixel<f32>> = batch
+            .iter()
+            .enumerate()
+            .map(|(i, p)| {
+                let k = b * IMAGER_BATCH + i;
+                let (x, y) = ((x0 as usize + k % w) as f32 + 0.5, (y0 as usize + k / w) as f32 + 0.5);
+                ImagerPixel {
+                    P: Vec3::new(x, y, 0.0),
+                    Ci: Color::new(p[0], p[1], p[2]),
+                    Oi: Color::new(p[3], p[3], p[3]),
+                    alpha: p[3],
+                }
+            })
+            .collect();
+        imager.image_batch(&mut px, &masks[..batch.len()]);
+        for (p, out) in batch.iter_mut().zip(&px) {
+            let finite = |v: f32| if v.is_finite() { v } else { 0.0 };
+            *p = [finite(out.Ci.r), finite(out.Ci.g), finite(out.Ci.b), finite(out.alpha)];
+        }
+    }
 }
 
 /// A deterministic dither in `[-1, 1)` for pixel `(x, y)`, channel `c`.

@@ -22,7 +22,7 @@ use crate::build::{Film, FrameDesc, ShaderCall};
 use crate::film::{reconstruct, SampleWindow};
 use crate::lights::{scene_light, SceneLight};
 use crate::shaders::{apply_params, ShaderLibrary};
-use crate::surface::SceneSurface;
+use crate::surface::{SceneSurface, Volumes};
 use anysl_core::{DisplacementShader, Matrix4, Spaces, SurfaceShader};
 use anysl_renderers::Projection;
 use anysl_renderers::{Camera, Image, Scene};
@@ -79,12 +79,9 @@ impl<S: SurfaceShader + DisplacementShader + Clone> Surfaces<S> {
     /// The shader cannot be found or compiled, or is not a displacement shader.
     fn displacement(&mut self, call: &ShaderCall) -> Result<(S, Vec<String>, bool), String> {
         let name = &call.name;
-        let kind = self.library.module(name)?.kind;
+        let kind = self.library.module(name).map_err(|e| format!("{}{e}", at(call)))?.kind;
         if kind != anysl_rsl::ir::ShaderKind::Displacement {
-            return Err(format!(
-                "shader \"{name}\" is a {} shader; Displacement needs a displacement shader",
-                format!("{kind:?}").to_lowercase()
-            ));
+            return Err(kind_error(call, kind, Stage::Displacement));
         }
         let (shader, warnings) = self.for_call(call)?;
         Ok((shader, warnings, self.uses_spaces.get(name).copied().unwrap_or(false)))
@@ -124,8 +121,10 @@ pub struct FrameScene<S> {
     pub scene: Scene<SceneSurface<S>, SceneLight>,
     /// The samples' window.
     pub window: SampleWindow,
-    /// Warnings (parameters that do not fit, unsupported lights).
+    /// Warnings (parameters that do not fit, unsupported lights, shaders left out).
     pub warnings: Vec<String>,
+    /// The imager shader, run on the filtered pixels by [`FrameScene::finish`].
+    pub imager: Option<InterpShader>,
 }
 
 /// Builds the renderer scene of `frame` with surface shaders from `surfaces`.
@@ -155,8 +154,24 @@ pub fn frame_scene<S: SurfaceShader + DisplacementShader + Clone>(
             }
             None => None,
         };
+        let calls = frame.volumes.get(k).cloned().unwrap_or_default();
+        let mut volume = |call: &Option<ShaderCall>, stage: Stage| -> Result<Option<InterpShader>, String> {
+            let Some(call) = call else { return Ok(None) };
+            match optional_stage_shader(call, &mut surfaces.library, stage, &mut warnings)? {
+                Some((shader, names_space)) => {
+                    uses |= names_space;
+                    Ok(Some(shader))
+                }
+                None => Ok(None),
+            }
+        };
+        let volumes = Volumes {
+            atmosphere: volume(&calls.atmosphere, Stage::Atmosphere)?,
+            interior: volume(&calls.interior, Stage::Interior)?,
+            exterior: volume(&calls.exterior, Stage::Exterior)?,
+        };
         spacey.push(uses);
-        shaders.push(SceneSurface { surface, displacement });
+        shaders.push(SceneSurface { surface, displacement, volumes });
     }
     let mut lights = Vec::new();
     // Frame light k → its index in `lights` (none when it is left out).
@@ -176,7 +191,11 @@ pub fn frame_scene<S: SurfaceShader + DisplacementShader + Clone>(
     }
     if shaders.is_empty() {
         // A world without primitives still needs a shader slot.
-        shaders.push(SceneSurface { surface: surfaces.instance("defaultsurface")?, displacement: None });
+        shaders.push(SceneSurface {
+            surface: surfaces.instance("defaultsurface")?,
+            displacement: None,
+            volumes: Volumes::default(),
+        });
         spacey.push(false);
     }
     let window = SampleWindow::of(&frame.film);
@@ -190,7 +209,112 @@ pub fn frame_scene<S: SurfaceShader + DisplacementShader + Clone>(
     scene.surface_lights = surface_lights;
     // RenderMan has no sky: a ray that meets nothing (`trace`, a path tracer's bounce) sees black.
     scene.sky = anysl_renderers::Sky { horizon: [0.0; 3], zenith: [0.0; 3], visible_to_camera: false };
-    Ok(FrameScene { scene, window, warnings })
+    let imager = match &frame.imager {
+        Some(call) => optional_stage_shader(call, &mut surfaces.library, Stage::Imager, &mut warnings)?.map(|s| s.0),
+        None => None,
+    };
+    Ok(FrameScene { scene, window, warnings, imager })
+}
+
+/// The shader requests besides `Surface` and `LightSource` (a displacement is made by the
+/// surfaces' back end, [`Surfaces::displacement`]; the others are run by the interpreter).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Stage {
+    Displacement,
+    Atmosphere,
+    Interior,
+    Exterior,
+    Imager,
+}
+
+impl Stage {
+    fn request(self) -> &'static str {
+        match self {
+            Stage::Displacement => "Displacement",
+            Stage::Atmosphere => "Atmosphere",
+            Stage::Interior => "Interior",
+            Stage::Exterior => "Exterior",
+            Stage::Imager => "Imager",
+        }
+    }
+
+    fn kind(self) -> anysl_rsl::ir::ShaderKind {
+        use anysl_rsl::ir::ShaderKind as K;
+        match self {
+            Stage::Displacement => K::Displacement,
+            Stage::Atmosphere | Stage::Interior | Stage::Exterior => K::Volume,
+            Stage::Imager => K::Imager,
+        }
+    }
+}
+
+/// Where a shader request is, for messages (`file:line: `, or nothing).
+fn at(call: &ShaderCall) -> String {
+    call.loc.as_ref().map_or_else(String::new, |l| format!("{l}: "))
+}
+
+/// The shader of `call` for `stage` (run by the interpreter), its parameter warnings, and
+/// whether it names a coordinate system.
+///
+/// # Errors
+/// The shader is not found, does not compile or is of another kind.
+fn stage_shader(
+    call: &ShaderCall,
+    library: &mut ShaderLibrary,
+    stage: Stage,
+) -> Result<(InterpShader, Vec<String>, bool), String> {
+    let name = &call.name;
+    let module = library.module(name).map_err(|e| format!("{}{e}", at(call)))?;
+    if module.kind != stage.kind() {
+        return Err(kind_error(call, module.kind, stage));
+    }
+    let names_space = module.uses_spaces();
+    let module = anysl_rsl::passes::optimize(module, &anysl_rsl::passes::PassOptions::default());
+    let program =
+        Program::new(module).map_err(|e| format!("{}{} shader \"{name}\": {e}", at(call), kind_word(stage)))?;
+    let mut shader = InterpShader::new(Arc::new(program));
+    let warnings = apply_params(&mut shader, call);
+    Ok((shader, warnings, names_space))
+}
+
+/// `shader "NAME" is a surface shader; Displacement needs a displacement shader`, with the
+/// request's location.
+fn kind_error(call: &ShaderCall, found: anysl_rsl::ir::ShaderKind, stage: Stage) -> String {
+    // "a surface shader", "an imager shader".
+    let kind = |k: anysl_rsl::ir::ShaderKind| {
+        let k = format!("{k:?}").to_lowercase();
+        let article = if k.starts_with(['a', 'e', 'i', 'o', 'u']) { "an" } else { "a" };
+        format!("{article} {k} shader")
+    };
+    format!("{}shader \"{}\" is {}; {} needs {}", at(call), call.name, kind(found), stage.request(), kind(stage.kind()))
+}
+
+fn kind_word(stage: Stage) -> &'static str {
+    match stage.kind() {
+        anysl_rsl::ir::ShaderKind::Displacement => "displacement",
+        anysl_rsl::ir::ShaderKind::Imager => "imager",
+        _ => "volume",
+    }
+}
+
+/// [`stage_shader`] for a request whose shader may be missing: a shader not found is left
+/// out with a warning naming it (`None`); its parameter warnings join `warnings`.
+///
+/// # Errors
+/// The shader is found but does not compile or is of another kind.
+fn optional_stage_shader(
+    call: &ShaderCall,
+    library: &mut ShaderLibrary,
+    stage: Stage,
+    warnings: &mut Vec<String>,
+) -> Result<Option<(InterpShader, bool)>, String> {
+    if let Err(e) = library.find(&call.name) {
+        warnings.push(format!("{}{} {e}; left out", at(call), stage.request()));
+        return Ok(None);
+    }
+    let (shader, w, names_space) = stage_shader(call, library, stage)?;
+    warnings.extend(w);
+    Ok(Some((shader, names_space)))
 }
 
 /// A glam matrix (column vectors) as an RSL one (row vectors, row by row).
@@ -355,7 +479,8 @@ fn place_spaces<S: Clone>(
 
 impl<S> FrameScene<S> {
     /// The frame's pixels (crop window, row-major RGBA before exposure, alpha = coverage)
-    /// from the renderer's `image` of the samples (rendered at one sample per pixel).
+    /// from the renderer's `image` of the samples (rendered at one sample per pixel), after
+    /// the imager shader if the frame has one.
     ///
     /// # Panics
     /// When `image` is not the size of the sample grid.
@@ -373,6 +498,10 @@ impl<S> FrameScene<S> {
                 [r, g, b, if hit.is_some() { 1.0 } else { 0.0 }]
             })
             .collect();
-        reconstruct(film, &self.window, &samples)
+        let mut pixels = reconstruct(film, &self.window, &samples);
+        if let Some(imager) = &self.imager {
+            crate::film::run_imager(imager, film, &mut pixels);
+        }
+        pixels
     }
 }

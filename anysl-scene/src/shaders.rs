@@ -26,6 +26,9 @@ pub const STANDARD: &[(&str, &str)] = &[
     ("distantlight", include_str!("../../shaders/rsl/distantlight.sl")),
     ("pointlight", include_str!("../../shaders/rsl/pointlight.sl")),
     ("spotlight", include_str!("../../shaders/rsl/spotlight.sl")),
+    ("fog", include_str!("../../shaders/rsl/standard/volume/fog.sl")),
+    ("depthcue", include_str!("../../shaders/rsl/standard/volume/depthcue.sl")),
+    ("background", include_str!("../../shaders/rsl/standard/imager/background.sl")),
 ];
 
 /// Where a shader's source was found.

@@ -9,7 +9,7 @@ use anysl_jit::{compile_with, ir_passes, CompileStats, JitOptions, JitShader, Va
 use anysl_rsl::back::interp::{InterpShader, Program};
 use anysl_rsl::ir::ShaderKind;
 use anysl_rsl::CompileOptions;
-use anysl_scene::surface::SceneSurface;
+use anysl_scene::surface::{SceneSurface, Volumes};
 use anysl_shaders::{table1_lights, Light, Surface};
 use anysl_simd::{F32x16, F32x4, F32x8};
 use serde::Serialize;
@@ -329,11 +329,11 @@ fn displaced_rows(
     jit.variant(Variant::DualX8)?;
     let compile_ms = t.elapsed().as_secs_f64() * 1e3;
     let alone = DisplaceOnly(disp.clone());
-    let both = SceneSurface { surface: jit.clone(), displacement: Some(disp.clone()) };
+    let both = SceneSurface { surface: jit.clone(), displacement: Some(disp.clone()), volumes: Volumes::default() };
     let (ref_alone, ref_both) = {
         let d = disp.interp().clone();
         let alone = DisplaceOnly(d.clone());
-        let both = SceneSurface { surface: interp.clone(), displacement: Some(d) };
+        let both = SceneSurface { surface: interp.clone(), displacement: Some(d), volumes: Volumes::default() };
         (
             shade_points_f64::<Dual<f64>, _, Light>(&alone, lights, set),
             shade_points_f64::<Dual<f64>, _, Light>(&both, lights, set),

@@ -776,6 +776,13 @@ impl<F: ShadingFloat, S: SurfaceShader, L: LightShader> ShadingContext<F> for Sc
         }
     }
 
+    /// Camera rays and their continuations through transparent surfaces are at depth 0,
+    /// each `trace` one deeper.
+    #[inline(always)]
+    fn ray_depth(&self) -> Option<u32> {
+        Some(self.depth.trace)
+    }
+
     #[inline(always)]
     fn trace(&mut self, e: &Exec<F>, p: Vec3<F>, dir: Vec3<F>) -> Color<F> {
         if self.depth.trace >= MAX_TRACE_DEPTH {

@@ -30,6 +30,10 @@ pub struct FrameDesc {
     pub surfaces: Vec<ShaderCall>,
     /// For each of `surfaces`, the displacement shader run before it (`Displacement`), if any.
     pub displacements: Vec<Option<ShaderCall>>,
+    /// For each of `surfaces`, the volume shaders along the rays that reach it.
+    pub volumes: Vec<VolumeCalls>,
+    /// The imager shader (`Imager`), run on the filtered pixels.
+    pub imager: Option<ShaderCall>,
     /// The light sources that illuminate some primitive, in the order declared.
     pub lights: Vec<LightCall>,
     /// Per instance, the lights that illuminate it: an index into `light_lists`.
@@ -92,6 +96,45 @@ impl ShaderCall {
         }
         out
     }
+}
+
+/// The volume shaders of a surface (attributes `Atmosphere`, `Interior`, `Exterior`; each
+/// absent when not given or given as `"null"`).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct VolumeCalls {
+    /// Along camera rays (and traced rays outside an object without an exterior).
+    pub atmosphere: Option<ShaderCall>,
+    /// Along traced rays that reach the surface from its inside (its back).
+    pub interior: Option<ShaderCall>,
+    /// Along traced rays that reach the surface from its outside (its front).
+    pub exterior: Option<ShaderCall>,
+}
+
+impl VolumeCalls {
+    /// Whether the two name the same shaders with the same parameters.
+    #[must_use]
+    pub fn same_as(&self, other: &Self) -> bool {
+        let same = |a: &Option<ShaderCall>, b: &Option<ShaderCall>| match (a, b) {
+            (None, None) => true,
+            (Some(a), Some(b)) => a.same_as(b),
+            _ => false,
+        };
+        same(&self.atmosphere, &other.atmosphere)
+            && same(&self.interior, &other.interior)
+            && same(&self.exterior, &other.exterior)
+    }
+}
+
+/// The shader call of a shader request (`Displacement`, `Atmosphere`, `Imager`, …): none for
+/// `"null"`.
+#[must_use]
+pub fn shader_call(loc: &Loc, name: &str, params: &ParamList) -> Option<ShaderCall> {
+    (name != "null").then(|| ShaderCall {
+        name: name.to_string(),
+        params: params.clone(),
+        primvars: ParamList::new(),
+        loc: Some(loc.clone()),
+    })
 }
 
 /// A light source: its shader call and the transform current at the `LightSource` request

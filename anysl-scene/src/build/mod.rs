@@ -17,7 +17,8 @@ mod frame;
 mod place;
 
 pub use frame::{
-    DisplayDesc, DisplayFormat, Film, FilterKind, FrameDesc, LightCall, PixelFilter, Quantize, ShaderCall,
+    shader_call, DisplayDesc, DisplayFormat, Film, FilterKind, FrameDesc, LightCall, PixelFilter, Quantize, ShaderCall,
+    VolumeCalls,
 };
 
 use crate::geom::{self, Detail, PatchBasis};
@@ -53,6 +54,7 @@ struct OptionState {
     gamma: f32,
     quantize: Quantize,
     displays: Vec<DisplayDesc>,
+    imager: Option<ShaderCall>,
     /// The transform current before `WorldBegin` (world-to-camera, built up by the camera
     /// requests).
     camera: Mat4,
@@ -75,6 +77,7 @@ impl Default for OptionState {
             gamma: 1.0,
             quantize: Quantize::EIGHT_BIT,
             displays: Vec::new(),
+            imager: None,
             camera: Mat4::IDENTITY,
         }
     }
@@ -91,6 +94,8 @@ struct Attributes {
     surface: Option<ShaderCall>,
     /// The displacement shader (`Displacement`).
     displacement: Option<ShaderCall>,
+    /// The volume shaders (`Atmosphere`, `Interior`, `Exterior`).
+    volumes: VolumeCalls,
     /// Shader space: the object-to-world transform current at `Surface`.
     shader_space: Mat4,
     basis: (Basis, i32, Basis, i32),
@@ -110,6 +115,7 @@ impl Default for Attributes {
             inside: false,
             surface: None,
             displacement: None,
+            volumes: VolumeCalls::default(),
             shader_space: Mat4::IDENTITY,
             basis: (bezier.clone(), 3, bezier, 3),
             st: None,
@@ -152,6 +158,7 @@ pub struct SceneBuilder {
     shader_spaces: Vec<Mat4>,
     surfaces: Vec<ShaderCall>,
     displacements: Vec<Option<ShaderCall>>,
+    volumes: Vec<VolumeCalls>,
     lights: Vec<LightCall>,
     light_used: Vec<bool>,
     /// Per instance, its light list (an index into `light_lists`).
@@ -233,6 +240,7 @@ impl SceneBuilder {
             shader_spaces: Vec::new(),
             surfaces: Vec::new(),
             displacements: Vec::new(),
+            volumes: Vec::new(),
             lights: Vec::new(),
             light_used: Vec::new(),
             instance_lights: Vec::new(),
@@ -415,6 +423,8 @@ impl RibBuilder for SceneBuilder {
             shader_spaces: std::mem::take(&mut self.shader_spaces),
             surfaces: std::mem::take(&mut self.surfaces),
             displacements: std::mem::take(&mut self.displacements),
+            volumes: std::mem::take(&mut self.volumes),
+            imager: self.options.imager.clone(),
             lights,
             instance_lights: std::mem::take(&mut self.instance_lights),
             light_lists,
@@ -772,12 +782,27 @@ impl RibBuilder for SceneBuilder {
     }
 
     fn displacement(&mut self, loc: &Loc, name: &str, params: &ParamList) -> Result<(), BuildError> {
-        self.attrs.displacement = (name != "null").then(|| ShaderCall {
-            name: name.to_string(),
-            params: params.clone(),
-            primvars: ParamList::new(),
-            loc: Some(loc.clone()),
-        });
+        self.attrs.displacement = shader_call(loc, name, params);
+        ok!()
+    }
+
+    fn atmosphere(&mut self, loc: &Loc, name: &str, params: &ParamList) -> Result<(), BuildError> {
+        self.attrs.volumes.atmosphere = shader_call(loc, name, params);
+        ok!()
+    }
+
+    fn interior(&mut self, loc: &Loc, name: &str, params: &ParamList) -> Result<(), BuildError> {
+        self.attrs.volumes.interior = shader_call(loc, name, params);
+        ok!()
+    }
+
+    fn exterior(&mut self, loc: &Loc, name: &str, params: &ParamList) -> Result<(), BuildError> {
+        self.attrs.volumes.exterior = shader_call(loc, name, params);
+        ok!()
+    }
+
+    fn imager(&mut self, loc: &Loc, name: &str, params: &ParamList) -> Result<(), BuildError> {
+        self.options.imager = shader_call(loc, name, params);
         ok!()
     }
 

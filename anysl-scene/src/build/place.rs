@@ -2,18 +2,19 @@
 //! object being recorded), with its surface slot (surface shader, displacement and the
 //! primitive variables that bind to shader parameters) and its light list.
 
-use super::{Attributes, Block, ObjectPart, SceneBuilder, ShaderCall};
+use super::{Attributes, Block, ObjectPart, SceneBuilder, ShaderCall, VolumeCalls};
 use crate::geom::{self, Tessellation};
 use anysl_renderers::{Instance, Mesh};
 use anysl_rib::{BuildError, ParamList};
 use glam::{Mat4, Vec4};
 
 impl SceneBuilder {
-    /// The surface shader index for the current attributes (calls with equal parameters
-    /// share one).
+    /// The surface shader index for the current attributes (calls with equal parameters,
+    /// displacement and volumes share one).
     pub(super) fn surface_index(
         surfaces: &mut Vec<ShaderCall>,
         displacements: &mut Vec<Option<ShaderCall>>,
+        volumes: &mut Vec<VolumeCalls>,
         attrs: &Attributes,
         primvars: &ParamList,
     ) -> usize {
@@ -29,18 +30,23 @@ impl SceneBuilder {
             (Some(a), Some(b)) => a.same_as(b),
             _ => false,
         };
-        if let Some(k) =
-            surfaces.iter().zip(displacements.iter()).position(|(s, d)| s.same_as(&call) && same_displacement(d))
+        if let Some(k) = surfaces
+            .iter()
+            .zip(displacements.iter())
+            .zip(volumes.iter())
+            .position(|((s, d), v)| s.same_as(&call) && same_displacement(d) && v.same_as(&attrs.volumes))
         {
             return k;
         }
         surfaces.push(call);
         displacements.push(attrs.displacement.clone());
+        volumes.push(attrs.volumes.clone());
         surfaces.len() - 1
     }
 
     pub(super) fn place(&mut self, mesh: usize, transform: Mat4, attrs: &Attributes, primvars: &ParamList) {
-        let surface = Self::surface_index(&mut self.surfaces, &mut self.displacements, attrs, primvars);
+        let surface =
+            Self::surface_index(&mut self.surfaces, &mut self.displacements, &mut self.volumes, attrs, primvars);
         let mut inst = Instance::new(mesh, surface, transform);
         inst.color = attrs.color;
         inst.opacity = attrs.opacity;

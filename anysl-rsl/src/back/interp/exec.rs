@@ -602,6 +602,26 @@ fn run_erased<F: ShadingFloat>(
     ctxs: &mut [Erased<'_, F>],
     masks: &[F::Mask],
 ) -> Frame<F> {
+    run_erased_with(p, params, ctxs, masks, &[])
+}
+
+/// What `Ci`, `Oi` and `alpha` hold when a volume or imager shader starts (per chunk).
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Incoming<F> {
+    pub(super) ci: Color<F>,
+    pub(super) oi: Color<F>,
+    pub(super) alpha: F,
+}
+
+/// [`run_erased`] with `Ci`, `Oi`, `alpha` of chunk `k` starting as `incoming[k]` (when
+/// given).
+pub(super) fn run_erased_with<F: ShadingFloat>(
+    p: &Program,
+    params: &[Const],
+    ctxs: &mut [Erased<'_, F>],
+    masks: &[F::Mask],
+    incoming: &[Incoming<F>],
+) -> Frame<F> {
     let n = ctxs.len();
     let mut fr = take_frame::<F>(p, n);
     for (i, loc) in p.params.iter().enumerate() {
@@ -612,6 +632,16 @@ fn run_erased<F: ShadingFloat>(
     for (k, ctx) in ctxs.iter().enumerate() {
         let g = *ctx.globals();
         load_globals(p, &mut fr, k, &g);
+        if let Some(inc) = incoming.get(k) {
+            for &(gl, loc) in &p.globals {
+                match gl {
+                    Global::Ci => fr.set3(loc.off(), k, [inc.ci.r, inc.ci.g, inc.ci.b]),
+                    Global::Oi => fr.set3(loc.off(), k, [inc.oi.r, inc.oi.g, inc.oi.b]),
+                    Global::Alpha => fr.set(loc.off(), k, inc.alpha),
+                    _ => {}
+                }
+            }
+        }
     }
     let mut mask: Vec<F::Mask> = masks.to_vec();
     mask.resize(n, F::Mask::splat(false));
@@ -818,10 +848,10 @@ impl DisplacementShader for InterpShader {
 /// its parameter values); the program's kind decides which shader trait it is used through.
 pub type InterpLight = InterpShader;
 
-/// The context a light shader runs in: `Ps` and the named spaces.
-struct LightCtx<'s, F: ShadingFloat> {
-    g: Globals<F>,
-    spaces: &'s Spaces,
+/// The context a light (or imager) shader runs in: its globals and the named spaces.
+pub(super) struct LightCtx<'s, F: ShadingFloat> {
+    pub(super) g: Globals<F>,
+    pub(super) spaces: &'s Spaces,
 }
 
 impl<F: ShadingFloat> ShadingContext<F> for LightCtx<'_, F> {

@@ -16,6 +16,7 @@ pub mod exec;
 mod frame;
 mod prepare;
 pub mod texture;
+mod volume;
 
 pub use exec::{release, run_batch, InterpLight, InterpShader};
 pub use frame::{Frame, Loc};
