@@ -96,6 +96,9 @@ fn a_compiled_displacement_bends_the_normal_as_its_slope_says() {
     // The compiled displacement ran: the shader the scene holds is a JIT shader with compiled
     // code for the dual-number variants the two renderers shade in.
     let fs = frame_scene(frame, &mut jit).expect("scene");
+    let opts = RenderOptions { threads: 1, ..RenderOptions::default() };
+    let _ = render_scalar(&fs.scene, &opts);
+    let _ = render_packet::<F32x8, _, _>(&fs.scene, &opts);
     let d = fs.scene.surfaces[0].displacement.as_ref().expect("a displacement");
     let compiled = d.compiled();
     assert!(
