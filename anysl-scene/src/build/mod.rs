@@ -15,6 +15,7 @@
 
 mod frame;
 mod place;
+mod textures;
 
 pub use frame::{
     DisplayDesc, DisplayFormat, Film, FilterKind, FrameDesc, LightCall, PixelFilter, Quantize, ShaderCall,
@@ -23,6 +24,7 @@ pub use frame::{
 use crate::geom::{self, Detail, PatchBasis};
 use anysl_renderers::{CameraSpec, Instance, Mesh, Projection};
 use anysl_rib::{Basis, BuildError, Handle, Loc, Matrix, ParamList, RibBuilder};
+use anysl_rt::texture::MapKind;
 use glam::{Mat4, Vec3, Vec4};
 use std::collections::{BTreeMap, HashMap};
 use std::path::PathBuf;
@@ -369,7 +371,9 @@ impl RibBuilder for SceneBuilder {
         ok!()
     }
 
-    fn world_begin(&mut self, _loc: &Loc) -> Result<(), BuildError> {
+    fn world_begin(&mut self, loc: &Loc) -> Result<(), BuildError> {
+        // Maps named by the world's shaders are looked for beside the RIB file too.
+        textures::add_search_dirs(loc, &[]);
         self.options.camera = self.ctm;
         self.world_to_camera = self.ctm;
         self.coordinate_systems.insert("camera".into(), self.ctm.inverse());
@@ -706,11 +710,58 @@ impl RibBuilder for SceneBuilder {
         }
     }
 
-    fn search_path(&mut self, _loc: &Loc, kind: &str, paths: &[PathBuf]) -> Result<(), BuildError> {
-        if kind == "shader" {
-            self.shader_paths = paths.to_vec();
+    fn search_path(&mut self, loc: &Loc, kind: &str, paths: &[PathBuf]) -> Result<(), BuildError> {
+        match kind {
+            "shader" => self.shader_paths = paths.to_vec(),
+            "texture" => textures::add_search_dirs(loc, paths),
+            _ => {}
         }
         ok!()
+    }
+
+    fn make_texture(
+        &mut self,
+        loc: &Loc,
+        picture: &str,
+        texture: &str,
+        swrap: &str,
+        twrap: &str,
+        filter: &str,
+        swidth: f32,
+        twidth: f32,
+        _params: &ParamList,
+    ) -> Result<(), BuildError> {
+        let src = vec![picture.to_string()];
+        textures::make(loc, MapKind::Texture, src, texture, (swrap, twrap), filter, swidth, twidth, 90.0)
+    }
+
+    fn make_lat_long_environment(
+        &mut self,
+        loc: &Loc,
+        picture: &str,
+        texture: &str,
+        filter: &str,
+        swidth: f32,
+        twidth: f32,
+        _params: &ParamList,
+    ) -> Result<(), BuildError> {
+        let src = vec![picture.to_string()];
+        textures::make(loc, MapKind::LatLong, src, texture, ("periodic", "clamp"), filter, swidth, twidth, 90.0)
+    }
+
+    fn make_cube_face_environment(
+        &mut self,
+        loc: &Loc,
+        faces: &[String; 6],
+        texture: &str,
+        fov: f32,
+        filter: &str,
+        swidth: f32,
+        twidth: f32,
+        _params: &ParamList,
+    ) -> Result<(), BuildError> {
+        let src = faces.to_vec();
+        textures::make(loc, MapKind::CubeFace, src, texture, ("clamp", "clamp"), filter, swidth, twidth, fov)
     }
 
     fn attribute(&mut self, _loc: &Loc, _name: &str, _params: &ParamList) -> Result<(), BuildError> {
