@@ -140,8 +140,13 @@ fn a_constant_environment_reads_its_constant_in_every_direction() {
         fov: 90.0,
     };
     texture::make("sky.env", latlong);
-    let cube =
-        MakeSpec { kind: MapKind::CubeFace, sources: faces, wrap: (Wrap::Clamp, Wrap::Clamp), filter: Filter::Gaussian, fov: 95.0 };
+    let cube = MakeSpec {
+        kind: MapKind::CubeFace,
+        sources: faces,
+        wrap: (Wrap::Clamp, Wrap::Clamp),
+        filter: Filter::Gaussian,
+        fov: 95.0,
+    };
     texture::make("cube.env", cube);
     let want = [64.0 / 255.0, 128.0 / 255.0, 192.0 / 255.0];
     let dirs = [[1.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, 0.0, -1.0], [-0.3, 0.9, -0.2], [0.5, -0.5, 0.7]];
@@ -187,7 +192,7 @@ fn shadow_of_a_depth_map_compares_depths() {
     assert_eq!(at(-1.0, 0.5), 0.0); // in front of it
     assert_eq!(at(1.0, 3.0), 0.0); // nothing in the way
     assert_eq!(at(5.0, 3.0), 0.0); // outside the map
-    // A footprint across the edge x = 0 (two texels wide): half the samples are in shadow.
+                                   // A footprint across the edge x = 0 (two texels wide): half the samples are in shadow.
     let p = Vec3::new(Dual::new(0.0f32, 2.0, 0.0), Dual::c(0.5), Dual::c(3.0));
     assert_eq!(shadow::lookup("depth.shad", p, &TexOptions::default()).lane(0), 0.5);
     assert_eq!(texture::info("depth.shad", "viewingmatrix"), Some(Info::Matrix(identity)));

@@ -172,6 +172,8 @@ pub fn frame_scene<S: SurfaceShader + Clone>(
     scene.surface_lights = surface_lights;
     // RenderMan has no sky: a ray that meets nothing (`trace`, a path tracer's bounce) sees black.
     scene.sky = anysl_renderers::Sky { horizon: [0.0; 3], zenith: [0.0; 3], visible_to_camera: false };
+    // The frame's depth passes, kept for the frames after it (`MakeShadow`, `shadow()`).
+    crate::depth::keep_depth_maps(frame, &scene);
     Ok(FrameScene { scene, window, warnings })
 }
 

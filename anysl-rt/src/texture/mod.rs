@@ -204,7 +204,9 @@ pub fn info(name: &str, query: &str) -> Option<Info> {
         "type" => Some(Info::Type(map.kind.type_name())),
         "channels" => Some(Info::Channels(map.channels() as f64)),
         "viewingmatrix" => map.camera.as_ref().map(|c| Info::Matrix(c.world_to_camera)),
-        "projectionmatrix" => map.camera.as_ref().map(|c| Info::Matrix(shadow::mat_mul(&c.projection, &c.world_to_camera))),
+        "projectionmatrix" => {
+            map.camera.as_ref().map(|c| Info::Matrix(shadow::mat_mul(&c.projection, &c.world_to_camera)))
+        }
         _ => None,
     }
 }

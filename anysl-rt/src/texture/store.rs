@@ -144,6 +144,12 @@ pub fn make(name: &str, spec: MakeSpec) {
 pub fn insert(name: &str, map: Map) {
     let mut s = store().write().unwrap_or_else(PoisonError::into_inner);
     s.made.remove(name);
+    // Maps made from the old one are made again on their next look-up.
+    let stale: Vec<String> =
+        s.made.iter().filter(|(_, sp)| sp.sources.iter().any(|x| x == name)).map(|(k, _)| k.clone()).collect();
+    for k in stale {
+        s.maps.remove(&k);
+    }
     s.maps.insert(name.to_string(), Some(Arc::new(map)));
 }
 
@@ -161,10 +167,22 @@ pub fn map(name: &str, kind: MapKind) -> Option<Arc<Map>> {
     if let Some(m) = store().read().unwrap_or_else(PoisonError::into_inner).maps.get(name) {
         return m.clone();
     }
-    let (spec, search) = {
+    let (spec, search, in_memory) = {
         let s = store().read().unwrap_or_else(PoisonError::into_inner);
-        (s.made.get(name).cloned(), s.search.clone())
+        let spec = s.made.get(name).cloned();
+        // `MakeShadow "pass.z" "pass.shad"` of a depth pass rendered in memory.
+        let in_memory = spec
+            .as_ref()
+            .filter(|sp| sp.sources.len() == 1)
+            .and_then(|sp| s.maps.get(&sp.sources[0]).cloned().flatten().map(|m| (sp.kind, m)));
+        (spec, s.search.clone(), in_memory)
     };
+    if let Some((kind, m)) = in_memory {
+        let mut m = (*m).clone();
+        m.kind = kind;
+        let mut s = store().write().unwrap_or_else(PoisonError::into_inner);
+        return s.maps.entry(name.to_string()).or_insert(Some(Arc::new(m))).clone();
+    }
     let spec = spec.unwrap_or_else(|| MakeSpec {
         kind: if kind == MapKind::Texture { MapKind::Texture } else { MapKind::LatLong },
         sources: vec![name.to_string()],

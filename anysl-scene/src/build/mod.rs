@@ -55,6 +55,8 @@ struct OptionState {
     gamma: f32,
     quantize: Quantize,
     displays: Vec<DisplayDesc>,
+    /// Depth passes: `Display` names of type `"zfile"`/`"shadow"`, mode `"z"`.
+    depth_maps: Vec<String>,
     /// The transform current before `WorldBegin` (world-to-camera, built up by the camera
     /// requests).
     camera: Mat4,
@@ -77,6 +79,7 @@ impl Default for OptionState {
             gamma: 1.0,
             quantize: Quantize::EIGHT_BIT,
             displays: Vec::new(),
+            depth_maps: Vec::new(),
             camera: Mat4::IDENTITY,
         }
     }
@@ -337,7 +340,7 @@ impl SceneBuilder {
     }
 
     fn displays(&self) -> Vec<DisplayDesc> {
-        if !self.options.displays.is_empty() {
+        if !self.options.displays.is_empty() || !self.options.depth_maps.is_empty() {
             return self.options.displays.clone();
         }
         let stem = self.opts.default_output.clone().unwrap_or_else(|| "ri".into());
@@ -414,6 +417,7 @@ impl RibBuilder for SceneBuilder {
             camera: self.camera_spec(),
             film,
             displays: self.displays(),
+            depth_maps: self.options.depth_maps.clone(),
             meshes: std::mem::take(&mut self.meshes),
             instances: std::mem::take(&mut self.instances),
             shader_spaces: std::mem::take(&mut self.shader_spaces),
@@ -652,6 +656,12 @@ impl RibBuilder for SceneBuilder {
         };
         if !add {
             self.options.displays.clear();
+            self.options.depth_maps.clear();
+        }
+        if mode == "z" && matches!(kind, "zfile" | "shadow") {
+            // A depth pass, kept in memory under its name for `MakeShadow` and `shadow()`.
+            self.options.depth_maps.push(name.to_string());
+            return ok!();
         }
         let mut warning = None;
         let format = match kind {
@@ -747,6 +757,11 @@ impl RibBuilder for SceneBuilder {
     ) -> Result<(), BuildError> {
         let src = vec![picture.to_string()];
         textures::make(loc, MapKind::LatLong, src, texture, ("periodic", "clamp"), filter, swidth, twidth, 90.0)
+    }
+
+    fn make_shadow(&mut self, loc: &Loc, picture: &str, texture: &str, _params: &ParamList) -> Result<(), BuildError> {
+        let src = vec![picture.to_string()];
+        textures::make(loc, MapKind::Shadow, src, texture, ("clamp", "clamp"), "box", 1.0, 1.0, 90.0)
     }
 
     fn make_cube_face_environment(

@@ -34,7 +34,8 @@ pub(super) fn add_search_dirs(loc: &Loc, paths: &[PathBuf]) {
 
 fn wrap(name: &str, which: &str) -> Result<Wrap, BuildError> {
     Wrap::from_name(name).ok_or_else(|| {
-        BuildError::error(format!("{which} \"{name}\" is not a wrap mode")).with_note("use \"periodic\", \"clamp\" or \"black\"")
+        BuildError::error(format!("{which} \"{name}\" is not a wrap mode"))
+            .with_note("use \"periodic\", \"clamp\" or \"black\"")
     })
 }
 

@@ -444,7 +444,9 @@ impl<'a> Gen<'a> {
                     Builtin::Shadow if coords >= 4 => {
                         format!("Color::splat({rt}::shadow::lookup_quad({}, [{}], &o))", a(0), quad(4))
                     }
-                    Builtin::Shadow if coords >= 1 => format!("Color::splat({rt}::shadow::lookup({}, {}, &o))", a(0), v(0)),
+                    Builtin::Shadow if coords >= 1 => {
+                        format!("Color::splat({rt}::shadow::lookup({}, {}, &o))", a(0), v(0))
+                    }
                     Builtin::Environment if coords >= 4 => {
                         format!("{rt}::env::lookup({}, {rt}::env::Dir::Quad([{}]), &o)", a(0), quad(4))
                     }
@@ -457,7 +459,9 @@ impl<'a> Gen<'a> {
                     Builtin::Texture if coords >= 2 => {
                         format!("{rt}::lookup({}, {rt}::St::Point({}, {}), &o)", a(0), v(0), v(1))
                     }
-                    Builtin::Texture if coords == 0 => format!("{rt}::lookup({}, {rt}::St::Point({g}.s, {g}.t), &o)", a(0)),
+                    Builtin::Texture if coords == 0 => {
+                        format!("{rt}::lookup({}, {rt}::St::Point({g}.s, {g}.t), &o)", a(0))
+                    }
                     _ => "Color::splat(o.fill)".to_string(),
                 };
                 let c = format!("{{ let mut o = {rt}::TexOptions::default(); {opts}{c} }}");
