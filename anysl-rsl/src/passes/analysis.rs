@@ -144,6 +144,10 @@ pub fn analyze_derivatives(func: &mut Function) -> bool {
                         need[a.0 as usize] = true;
                     }
                 }
+                // `texture(name)` reads the globals s, t: their derivatives are its footprint.
+                if *builtin == crate::builtins::Builtin::Texture {
+                    need[v.0 as usize] = true;
+                }
             }
         }
     });

@@ -8,3 +8,4 @@ mod examples;
 mod known_answers;
 mod lights;
 mod spaces;
+mod textures;
