@@ -11,7 +11,7 @@
 
 use super::mip::Wrap;
 use super::store::{self, Map, MapKind};
-use super::TexOptions;
+use super::{TexOptions, MAX_LANES};
 use anysl_core::prelude::*;
 use std::f64::consts::PI;
 
@@ -133,7 +133,7 @@ fn sample(map: &Map, d: [f64; 3], angle: f64, o: &TexOptions<f64>, out: &mut [f6
 #[must_use]
 pub fn lookup<F: ShadingFloat>(name: &str, dir: Dir<F>, o: &TexOptions<F>) -> Color<F> {
     let Some(map) = store::map(name, MapKind::LatLong) else { return Color::splat(o.fill) };
-    let mut out = [[0.0f64; 16]; 3];
+    let mut out = [[0.0f64; MAX_LANES]; 3];
     for i in 0..F::LANES {
         let (d, angle) = lane_dir(&dir, i);
         let oi = TexOptions {

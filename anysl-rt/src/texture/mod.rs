@@ -25,6 +25,10 @@ pub use store::{add_search_path, make, DepthCamera, MakeSpec, Map, MapKind};
 
 use anysl_core::prelude::*;
 
+/// The most lanes a look-up serves at once (per-lane results live in arrays of this size; the
+/// widest instantiation, a pair of 16-lane vectors, has 32).
+const MAX_LANES: usize = 64;
+
 /// The optional arguments of a look-up (`"blur"`, `"width"`, `"fill"`, …) and the channel
 /// selected by `"name"[c]`.
 #[derive(Clone, Copy, Debug)]
@@ -140,7 +144,7 @@ pub fn lookup<F: ShadingFloat>(name: &str, st: St<F>, o: &TexOptions<F>) -> Colo
     let img = &map.faces[0];
     let filter = o.filter.unwrap_or(map.filter);
     let gray = img.channels() == 1 && o.first == 0;
-    let mut out = [[0.0f64; 16]; 3];
+    let mut out = [[0.0f64; MAX_LANES]; 3];
     for i in 0..F::LANES {
         let [s, t, ws, wt] = footprint(&st, o, i);
         let mut v = [0.0; 3];

@@ -8,7 +8,7 @@
 //! shadow (0 lit, 1 occluded).
 
 use super::store::{self, DepthCamera, MapKind};
-use super::TexOptions;
+use super::{TexOptions, MAX_LANES};
 use anysl_core::prelude::*;
 
 /// `a · b` of 4 × 4 matrices stored column-major (column vectors).
@@ -64,7 +64,7 @@ pub fn lookup<F: ShadingFloat>(name: &str, p: Vec3<F>, o: &TexOptions<F>) -> F {
     let (w, h) = img.resolution();
     let depth = &img.levels()[0];
     let (sx, sy, z) = project(cam, p);
-    let mut out = [0.0f64; 16];
+    let mut out = [0.0f64; MAX_LANES];
     for (i, slot) in out.iter_mut().enumerate().take(F::LANES) {
         // Texture space: s right, t down, over the screen window [-1, 1]².
         let (s, t, zi) = ((sx.lane(i) + 1.0) * 0.5, (1.0 - sy.lane(i)) * 0.5, z.lane(i));
