@@ -98,7 +98,7 @@ fn a_missing_tex_is_read_from_the_image_of_the_same_stem_on_the_search_path() {
     assert_eq!(texture::info("brick.tex", "type"), Some(Info::Type("texture")));
     assert_eq!(texture::info("brick.tex", "viewingmatrix"), None);
     assert_eq!(texture::info("brick-missing.tex", "resolution"), None);
-    let e = store::resolve("brick-missing.tex", &[d.clone()]).unwrap_err();
+    let e = store::resolve("brick-missing.tex", std::slice::from_ref(&d)).unwrap_err();
     assert!(e.contains("brick-missing") && e.contains("tif") && e.contains(&d.display().to_string()), "{e}");
 }
 

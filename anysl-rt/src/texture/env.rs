@@ -147,8 +147,8 @@ pub fn lookup<F: ShadingFloat>(name: &str, dir: Dir<F>, o: &TexOptions<F>) -> Co
         };
         let mut v = [0.0; 3];
         sample(&map, d, angle, &oi, &mut v);
-        for c in 0..3 {
-            out[c][i] = v[c];
+        for (o, x) in out.iter_mut().zip(v) {
+            o[i] = x;
         }
     }
     let lanes = |c: usize| F::from_lanes(&out[c][..F::LANES]);

@@ -153,8 +153,8 @@ pub fn lookup<F: ShadingFloat>(name: &str, st: St<F>, o: &TexOptions<F>) -> Colo
         if gray {
             v = [v[0]; 3];
         }
-        for c in 0..3 {
-            out[c][i] = v[c];
+        for (o, x) in out.iter_mut().zip(v) {
+            o[i] = x;
         }
     }
     let lanes = |c: usize| F::from_lanes(&out[c][..F::LANES]);
