@@ -16,6 +16,7 @@
 #![warn(missing_docs)]
 
 pub mod build;
+pub mod depth;
 pub mod film;
 pub mod geom;
 pub mod lights;

@@ -209,6 +209,8 @@ pub fn frame_scene<S: SurfaceShader + DisplacementShader + Clone>(
     scene.surface_lights = surface_lights;
     // RenderMan has no sky: a ray that meets nothing (`trace`, a path tracer's bounce) sees black.
     scene.sky = anysl_renderers::Sky { horizon: [0.0; 3], zenith: [0.0; 3], visible_to_camera: false };
+    // The frame's depth passes, kept for the frames after it (`MakeShadow`, `shadow()`).
+    crate::depth::keep_depth_maps(frame, &scene);
     let imager = match &frame.imager {
         Some(call) => optional_stage_shader(call, &mut surfaces.library, Stage::Imager, &mut warnings)?.map(|s| s.0),
         None => None,

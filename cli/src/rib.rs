@@ -119,6 +119,16 @@ fn render_frame<S: SurfaceShader + DisplacementShader + Clone>(
         eprintln!("warning: {w}");
     }
     let setup = start.elapsed();
+    if frame.displays.is_empty() {
+        // A depth pass only: `frame_scene` kept its depth map in memory; nothing to render.
+        println!(
+            "frame {}: depth pass {} kept in memory in {:.1} ms",
+            frame.number.unwrap_or(frame.index as i32 + 1),
+            frame.depth_maps.join(", "),
+            setup.as_secs_f64() * 1e3
+        );
+        return Ok(());
+    }
     let t0 = Instant::now();
     let (image, shading): (Image, Option<Duration>) = match args.renderer {
         RendererName::Packet if !fs.scene.surfaces.iter().any(|s| s.meta().uses_derivatives) => {

@@ -148,6 +148,10 @@ pub fn analyze_derivatives(func: &mut Function, outputs: &[crate::ir::Global]) -
                         need[a.0 as usize] = true;
                     }
                 }
+                // `texture(name)` reads the globals s, t: their derivatives are its footprint.
+                if *builtin == crate::builtins::Builtin::Texture {
+                    need[v.0 as usize] = true;
+                }
             }
         }
     });

@@ -19,6 +19,10 @@ pub struct FrameDesc {
     pub film: Film,
     /// Where the picture goes.
     pub displays: Vec<DisplayDesc>,
+    /// Depth passes to keep in memory by name (`Display name "zfile"|"shadow" "z"`): the
+    /// camera-space depth of the nearest surface at each pixel centre, with the frame's camera
+    /// (see [`crate::depth`]).
+    pub depth_maps: Vec<String>,
     /// The tessellated primitives (object space).
     pub meshes: Vec<Mesh>,
     /// The primitives placed in the world, each with an index into `surfaces`.

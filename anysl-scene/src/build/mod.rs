@@ -15,6 +15,7 @@
 
 mod frame;
 mod place;
+mod textures;
 
 pub use frame::{
     shader_call, DisplayDesc, DisplayFormat, Film, FilterKind, FrameDesc, LightCall, PixelFilter, Quantize, ShaderCall,
@@ -24,6 +25,7 @@ pub use frame::{
 use crate::geom::{self, Detail, PatchBasis};
 use anysl_renderers::{CameraSpec, Instance, Mesh, Projection};
 use anysl_rib::{Basis, BuildError, Handle, Loc, Matrix, ParamList, RibBuilder};
+use anysl_rt::texture::MapKind;
 use glam::{Mat4, Vec3, Vec4};
 use std::collections::{BTreeMap, HashMap};
 use std::path::PathBuf;
@@ -55,6 +57,8 @@ struct OptionState {
     quantize: Quantize,
     displays: Vec<DisplayDesc>,
     imager: Option<ShaderCall>,
+    /// Depth passes: `Display` names of type `"zfile"`/`"shadow"`, mode `"z"`.
+    depth_maps: Vec<String>,
     /// The transform current before `WorldBegin` (world-to-camera, built up by the camera
     /// requests).
     camera: Mat4,
@@ -78,6 +82,7 @@ impl Default for OptionState {
             quantize: Quantize::EIGHT_BIT,
             displays: Vec::new(),
             imager: None,
+            depth_maps: Vec::new(),
             camera: Mat4::IDENTITY,
         }
     }
@@ -343,7 +348,7 @@ impl SceneBuilder {
     }
 
     fn displays(&self) -> Vec<DisplayDesc> {
-        if !self.options.displays.is_empty() {
+        if !self.options.displays.is_empty() || !self.options.depth_maps.is_empty() {
             return self.options.displays.clone();
         }
         let stem = self.opts.default_output.clone().unwrap_or_else(|| "ri".into());
@@ -377,7 +382,9 @@ impl RibBuilder for SceneBuilder {
         ok!()
     }
 
-    fn world_begin(&mut self, _loc: &Loc) -> Result<(), BuildError> {
+    fn world_begin(&mut self, loc: &Loc) -> Result<(), BuildError> {
+        // Maps named by the world's shaders are looked for beside the RIB file too.
+        textures::add_search_dirs(loc, &[]);
         self.options.camera = self.ctm;
         self.world_to_camera = self.ctm;
         self.coordinate_systems.insert("camera".into(), self.ctm.inverse());
@@ -418,6 +425,7 @@ impl RibBuilder for SceneBuilder {
             camera: self.camera_spec(),
             film,
             displays: self.displays(),
+            depth_maps: self.options.depth_maps.clone(),
             meshes: std::mem::take(&mut self.meshes),
             instances: std::mem::take(&mut self.instances),
             shader_spaces: std::mem::take(&mut self.shader_spaces),
@@ -658,6 +666,12 @@ impl RibBuilder for SceneBuilder {
         };
         if !add {
             self.options.displays.clear();
+            self.options.depth_maps.clear();
+        }
+        if mode == "z" && matches!(kind, "zfile" | "shadow") {
+            // A depth pass, kept in memory under its name for `MakeShadow` and `shadow()`.
+            self.options.depth_maps.push(name.to_string());
+            return ok!();
         }
         let mut warning = None;
         let format = match kind {
@@ -716,11 +730,63 @@ impl RibBuilder for SceneBuilder {
         }
     }
 
-    fn search_path(&mut self, _loc: &Loc, kind: &str, paths: &[PathBuf]) -> Result<(), BuildError> {
-        if kind == "shader" {
-            self.shader_paths = paths.to_vec();
+    fn search_path(&mut self, loc: &Loc, kind: &str, paths: &[PathBuf]) -> Result<(), BuildError> {
+        match kind {
+            "shader" => self.shader_paths = paths.to_vec(),
+            "texture" => textures::add_search_dirs(loc, paths),
+            _ => {}
         }
         ok!()
+    }
+
+    fn make_texture(
+        &mut self,
+        loc: &Loc,
+        picture: &str,
+        texture: &str,
+        swrap: &str,
+        twrap: &str,
+        filter: &str,
+        swidth: f32,
+        twidth: f32,
+        _params: &ParamList,
+    ) -> Result<(), BuildError> {
+        let src = vec![picture.to_string()];
+        textures::make(loc, MapKind::Texture, src, texture, (swrap, twrap), filter, swidth, twidth, 90.0)
+    }
+
+    fn make_lat_long_environment(
+        &mut self,
+        loc: &Loc,
+        picture: &str,
+        texture: &str,
+        filter: &str,
+        swidth: f32,
+        twidth: f32,
+        _params: &ParamList,
+    ) -> Result<(), BuildError> {
+        let src = vec![picture.to_string()];
+        textures::make(loc, MapKind::LatLong, src, texture, ("periodic", "clamp"), filter, swidth, twidth, 90.0)
+    }
+
+    fn make_shadow(&mut self, loc: &Loc, picture: &str, texture: &str, _params: &ParamList) -> Result<(), BuildError> {
+        let src = vec![picture.to_string()];
+        textures::make(loc, MapKind::Shadow, src, texture, ("clamp", "clamp"), "box", 1.0, 1.0, 90.0)
+    }
+
+    fn make_cube_face_environment(
+        &mut self,
+        loc: &Loc,
+        faces: &[String; 6],
+        texture: &str,
+        fov: f32,
+        filter: &str,
+        swidth: f32,
+        twidth: f32,
+        _params: &ParamList,
+    ) -> Result<(), BuildError> {
+        let src = faces.to_vec();
+        textures::make(loc, MapKind::CubeFace, src, texture, ("clamp", "clamp"), filter, swidth, twidth, fov)
     }
 
     fn attribute(&mut self, _loc: &Loc, _name: &str, _params: &ParamList) -> Result<(), BuildError> {

@@ -8,4 +8,5 @@ mod examples;
 mod known_answers;
 mod lights;
 mod spaces;
+mod textures;
 mod volumes;

@@ -2,6 +2,7 @@
 //! the RenderMan standard ones) like their generated-Rust versions, on the `table1` scene in
 //! every renderer — and, for the Table-1 shaders, like the hand-written ones.
 
+use anysl_core::Shader as _;
 use anysl_renderers::{render_packet, render_pbrt, render_scalar, scenes, Image, Integrator, RenderOptions};
 use anysl_rsl::back::interp::{InterpShader, Program};
 use anysl_rsl::passes::{optimize, PassOptions};
@@ -86,4 +87,36 @@ fn the_interpreter_renders_every_rsl_surface_like_generated_rust() {
     }
     assert!(surfaces >= 15, "only {surfaces} surface shaders found in shaders/rsl");
     assert!(failures.is_empty(), "the interpreter renders differently:\n{}", failures.join("\n"));
+}
+
+#[test]
+fn texture_and_environment_look_ups_agree_between_the_interpreter_and_generated_rust() {
+    // The standard shaders that read maps, given the pictures of scenes/textures: both back
+    // ends call anysl-rt with the same coordinates and footprints, so the pictures agree.
+    let pictures = Path::new(env!("CARGO_MANIFEST_DIR")).join("..").join("scenes").join("textures");
+    let opts = RenderOptions { threads: 0, ..RenderOptions::default() };
+    let mut failures = Vec::new();
+    for (name, map) in [("paintedplastic", "tile.png"), ("shinymetal", "sky.png")] {
+        let value = anysl_core::ParamValue::String(pictures.join(map).to_string_lossy().into_owned());
+        let mut a = interp(&rsl_dir().join("standard").join(format!("{name}.sl")));
+        a.set_param("texturename", &value).expect("interpreter parameter");
+        let mut b = RslSurface::by_name(name).unwrap_or_else(|| panic!("no generated shader `{name}`"));
+        b.set_param("texturename", &value).expect("generated parameter");
+        assert!(a.meta().uses_derivatives && b.meta().uses_derivatives, "{name}: look-ups filter by derivatives");
+        let (a, b) = (scenes::table1(a, table1_lights(), SIZE), scenes::table1(b, table1_lights(), SIZE));
+        let scalar = render_scalar(&a, &opts);
+        diff(&mut failures, format!("{name} scalar"), &scalar, &render_scalar(&b, &opts));
+        diff(
+            &mut failures,
+            format!("{name} packet x8"),
+            &render_packet::<F32x8, _, _>(&a, &opts),
+            &render_packet::<F32x8, _, _>(&b, &opts),
+        );
+        // The map is read: the picture differs from the shader without one.
+        let plain =
+            scenes::table1(interp(&rsl_dir().join("standard").join(format!("{name}.sl"))), table1_lights(), SIZE);
+        let d = scalar.max_abs_diff(&render_scalar(&plain, &opts));
+        assert!(d > 0.05, "{name}: the texture changes the picture by only {d}");
+    }
+    assert!(failures.is_empty(), "the back ends read textures differently:\n{}", failures.join("\n"));
 }

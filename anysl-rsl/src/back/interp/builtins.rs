@@ -129,6 +129,8 @@ pub enum Bi {
         out: u32,
         coords: u32,
     },
+    /// `textureinfo(name, query, out)`.
+    TextureInfo,
     Concat,
     Format,
     Printf,
@@ -289,8 +291,8 @@ pub fn resolve(
         | Builtin::Opposite
         | Builtin::Attribute
         | Builtin::Option
-        | Builtin::RendererInfo
-        | Builtin::TextureInfo => Bi::Query,
+        | Builtin::RendererInfo => Bi::Query,
+        Builtin::TextureInfo => Bi::TextureInfo,
         Builtin::RayInfo => Bi::Query,
         // Outside a scene: camera rays, nothing occludes, no indirect or caustic light.
         Builtin::RayLevel | Builtin::IsShadowRay | Builtin::IsIndirectRay | Builtin::Occlusion => Bi::Fill(0, 1),
@@ -724,34 +726,21 @@ pub fn call<F: ShadingFloat, C: ShadingContext<F>>(
         Bi::Texture { kind, out, coords } => {
             let name = space_str(fr, args[0]).to_string();
             let g = ctx.map(|c| *c.globals());
-            let cs: Vec<Loc> = args[1..1 + coords as usize].to_vec();
-            let v = texture::lookup(fr, &name, kind, &cs, g.as_ref(), k);
-            // `"name"[n]` (lowered to a `"firstchannel", n` option) starts at channel n; the
-            // maps are RGB, so channels past blue (alpha) read the "fill" value, 1 by default
-            // for a map that exists (opaque) and 0 for a missing one.
-            let mut first = 0usize;
-            let mut fill = if anysl_rt::texture::exists(&name) { F::c(1.0) } else { F::c(0.0) };
-            let opts = args.get(1 + coords as usize..).unwrap_or(&[]);
-            for pair in opts.chunks(2) {
-                if let [n, val] = pair {
-                    match space_str(fr, *n) {
-                        "firstchannel" => first = fr.get(val.off(), k).lane(0).max(0.0) as usize,
-                        "fill" => fill = fr.get(val.off(), k),
-                        _ => {}
-                    }
-                }
-            }
-            let chan = |c: usize| match c {
-                0 => v.r,
-                1 => v.g,
-                2 => v.b,
-                _ => fill,
-            };
+            let n = 1 + coords as usize;
+            let v = texture::lookup(fr, &name, kind, &args[1..n], args.get(n..).unwrap_or(&[]), g.as_ref(), k);
             if out == 1 {
-                fr.set(d, k, chan(first));
+                fr.set(d, k, v.r);
             } else {
-                fr.set3(d, k, [chan(first), chan(first + 1), chan(first + 2)]);
+                setc!(v);
             }
+        }
+        Bi::TextureInfo => {
+            let (name, query) = (space_str(fr, args[0]).to_string(), space_str(fr, args[1]).to_string());
+            let ok = match outs.get(2).copied().flatten() {
+                Some(l) => texture::info(fr, &name, &query, l, k, m),
+                None => F::c(0.0),
+            };
+            fr.set(d, k, ok);
         }
         Bi::Concat => {
             let s: String = args.iter().map(|l| space_str(fr, *l).to_string()).collect();

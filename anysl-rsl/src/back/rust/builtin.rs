@@ -429,16 +429,42 @@ impl<'a> Gen<'a> {
             }
             Builtin::SpecularBrdf => format!("Color::splat(specularbrdf({}, {}, {}, {}))", a(0), a(1), a(2), a(3)),
             Builtin::Texture | Builtin::Environment | Builtin::Shadow => {
-                let rt = self.opts.runtime.clone();
+                let rt = format!("{}::texture", self.opts.runtime);
                 let coords = args.iter().skip(1).take_while(|x| self.arg_ty(**x).base != B::String).count();
+                // The `"name", value` pairs after the coordinates (channel selection arrives as
+                // `"firstchannel", c`).
+                let mut opts = String::new();
+                for i in (1 + coords..n.saturating_sub(1)).step_by(2) {
+                    let set = if self.arg_ty(args[i + 1]).base == B::String { "set_string" } else { "set_float" };
+                    opts.push_str(&format!("o.{set}({}, {}); ", a(i), a(i + 1)));
+                }
+                let v = |k: usize| a(1 + k);
+                let quad = |k: usize| (0..k).map(v).collect::<Vec<_>>().join(", ");
                 let c = match builtin {
-                    Builtin::Shadow => "Color::zero()".to_string(),
-                    Builtin::Environment if coords >= 1 => format!("{rt}::environment({}, {})", a(0), a(1)),
-                    Builtin::Environment => "Color::zero()".to_string(),
-                    _ if coords >= 2 => format!("{rt}::texture({}, Some(({}, {})), &{g})", a(0), a(1), a(2)),
-                    _ if coords == 0 => format!("{rt}::texture({}, None, &{g})", a(0)),
-                    _ => "Color::zero()".to_string(),
+                    Builtin::Shadow if coords >= 4 => {
+                        format!("Color::splat({rt}::shadow::lookup_quad({}, [{}], &o))", a(0), quad(4))
+                    }
+                    Builtin::Shadow if coords >= 1 => {
+                        format!("Color::splat({rt}::shadow::lookup({}, {}, &o))", a(0), v(0))
+                    }
+                    Builtin::Environment if coords >= 4 => {
+                        format!("{rt}::env::lookup({}, {rt}::env::Dir::Quad([{}]), &o)", a(0), quad(4))
+                    }
+                    Builtin::Environment if coords >= 1 => {
+                        format!("{rt}::env::lookup({}, {rt}::env::Dir::Ray({}), &o)", a(0), v(0))
+                    }
+                    Builtin::Texture if coords >= 8 => {
+                        format!("{rt}::lookup({}, {rt}::St::Quad([{}]), &o)", a(0), quad(8))
+                    }
+                    Builtin::Texture if coords >= 2 => {
+                        format!("{rt}::lookup({}, {rt}::St::Point({}, {}), &o)", a(0), v(0), v(1))
+                    }
+                    Builtin::Texture if coords == 0 => {
+                        format!("{rt}::lookup({}, {rt}::St::Point({g}.s, {g}.t), &o)", a(0))
+                    }
+                    _ => "Color::splat(o.fill)".to_string(),
                 };
+                let c = format!("{{ let mut o = {rt}::TexOptions::default(); {opts}{c} }}");
                 if ret == B::Float {
                     format!("({c}).r")
                 } else {
