@@ -135,7 +135,7 @@ impl<S: SurfaceShader + DisplacementShader> SurfaceShader for SceneSurface<S> {
     }
 }
 
-impl<S: SurfaceShader> SceneSurface<S> {
+impl<S: SurfaceShader + DisplacementShader> SceneSurface<S> {
     /// The displacement (if any) and the surface shader.
     #[inline]
     fn shade_surface<F: ShadingFloat, C: ShadingContext<F>>(&self, ctx: &mut C, e: &mut Exec<F>) -> SurfaceOutput<F> {
