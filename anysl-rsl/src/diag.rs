@@ -162,6 +162,17 @@ pub mod codes {
     /// Warning: a `uniform` local of a function is assigned under varying control flow, so it
     /// is made varying (BMRT's noises.h: `uniform float amp` in a loop on a varying width).
     pub const PROMOTED_TO_VARYING: &str = "W0004";
+    /// Warning: a C float suffix on a number (`0.5f`), read as the number.
+    pub const FLOAT_SUFFIX: &str = "W0005";
+    /// Warning: a shader parameter default that is not a constant (`normalize(dPdu)`); it is
+    /// computed when the shader runs unless the parameter is given.
+    pub const COMPUTED_DEFAULT: &str = "W0006";
+    /// Warning: a light shader assigns `N`, which the RenderMan spec makes read-only there
+    /// (Pixie's and Aqsis' area lights do).
+    pub const WRITTEN_GLOBAL: &str = "W0007";
+    /// Warning: a construct a period compiler took that has no effect here (an `illuminance`
+    /// loop in a light shader, which sees no lights).
+    pub const NO_EFFECT: &str = "W0008";
 }
 
 /// A list of diagnostics from one compilation.

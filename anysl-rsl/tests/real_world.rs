@@ -10,8 +10,8 @@
 
 use anysl_ad::Dual;
 use anysl_core::prelude::*;
-use anysl_core::PointContext;
-use anysl_rsl::back::interp::{release, run_batch, InterpLight, Program};
+use anysl_core::{ParamValue, PointContext, Shader};
+use anysl_rsl::back::interp::{release, run_batch, InterpLight, InterpShader, Program};
 use anysl_rsl::ir::{Const, Global};
 use anysl_rsl::passes::{optimize, PassOptions};
 use anysl_rsl::{compile_file, compile_source, CompileOptions, Compiled};
@@ -314,11 +314,13 @@ fn uniform_assignments_in_light_bodies_without_cone() {
             }
         }"#,
     );
+    // Under a cone the light's body is varying control flow: a uniform assigned there is
+    // made varying (W0004).
     assert_eq!(
-        error_codes(
+        warning_codes(
             "light t () { uniform float n = 0; illuminate (point (0,0,0), vector (0,0,1), 0.5) { n += 1; Cl = n; } }"
         ),
-        ["E0214"]
+        ["W0004"]
     );
 }
 
@@ -344,7 +346,7 @@ fn shader_type_words_as_variable_names() {
 
 /// BMRT's noises.h: `filtered_fBm` keeps `uniform float amp` in a loop whose condition
 /// (`fw < 1.0`) is varying. A uniform *local of a function* assigned under varying flow is made
-/// varying with a warning (BMRT, Aqsis); in the shader body it stays an error.
+/// varying with a warning (BMRT, Aqsis), and so is one of the shader body.
 #[test]
 fn function_locals_promoted_to_varying() {
     let src = r#"
@@ -370,10 +372,116 @@ fn function_locals_promoted_to_varying() {
         }"#;
     runs(src);
     assert_eq!(warning_codes(src), ["W0004", "W0004"]); // `amp` and the counter `i`
-                                                        // Output parameters and shader-body locals keep the rule.
+                                                        // Output parameters keep the rule: the caller's variable is uniform.
     assert_eq!(
         error_codes("void f (output uniform float u) { if (s > 0.5) u = 1; } surface t () { uniform float x; f (x); }"),
         ["E0214"]
     );
-    assert_eq!(error_codes("surface t () { uniform float u = 0; if (s > 0.5) u = 1; }"), ["E0214"]);
+    // A shader-body local: made varying, and each point keeps its own value (s = 0.25, 0.75).
+    let src = "surface t () { uniform float u = 0; if (s > 0.5) u = 1; Ci = u; }";
+    assert_eq!(warning_codes(src), ["W0004"]);
+    let v = runs(src);
+    assert_eq!(v.iter().map(|c| c[0]).collect::<Vec<_>>(), [0.0, 1.0, 0.0, 1.0]);
+}
+
+// ---- what period compilers accepted (issue 23, item 6) ------------------------------------------
+
+/// `vector xdir = normalize(dPdu)`, `color c = Cs`: a default that is not a constant is
+/// computed when the shader runs (W0006), unless the parameter is given a value.
+#[test]
+fn computed_parameter_defaults() {
+    let src = r#"surface t (vector dir = normalize (dPdu) * 2; float w = du * 3; color c = Cs * 0.5;)
+        {
+            Ci = color (xcomp (dir), w, comp (c, 0));
+        }"#;
+    assert_eq!(warning_codes(src), ["W0006", "W0006", "W0006"]);
+    // The harness grid: dPdu = (1, 0, 0), du = 1/2, Cs = 1.
+    for c in runs(src) {
+        assert!((c[0] - 2.0).abs() < 1e-6 && (c[1] - 1.5).abs() < 1e-6 && (c[2] - 0.5).abs() < 1e-6, "{c:?}");
+    }
+    // A value given for `w` replaces its default; the others still compute theirs.
+    let c = compile_source("t.sl", src, &CompileOptions::default()).expect("checks");
+    let prog = Arc::new(Program::new(optimize(c.module, &PassOptions::default())).expect("prepares"));
+    let mut shader = InterpShader::new(prog.clone());
+    shader.set_param("w", &ParamValue::Float(7.0)).expect("w is a parameter");
+    let mut ctx = [PointContext::new(globals::<Dual<f32>>(0, 0, 2), &[] as &[InterpLight])];
+    let fr = run_batch::<Dual<f32>, _>(&prog, &shader.values, &mut ctx, &[Mask::splat(true)]);
+    let ci = fr.read(prog.global_loc(Global::Ci).expect("Ci"), 0);
+    let got: Vec<f64> = ci.iter().map(|x| x.lane(0)).collect();
+    release(fr);
+    assert_eq!(got, [2.0, 7.0, 0.5]);
+}
+
+/// `0.5f`, `1.f`: C float suffixes, read as the number with a warning (W0005); other letters
+/// after a number stay an error.
+#[test]
+fn float_suffixes() {
+    let src = "surface t () { Ci = color (0.5f, 1.f, 2e-1F); }";
+    assert_eq!(warning_codes(src), ["W0005", "W0005", "W0005"]);
+    assert!(runs(src).iter().all(|c| *c == [0.5, 1.0, 0.2f32 as f64]), "{:?}", runs(src));
+    assert_eq!(error_codes("surface t () { Ci = 0.5q; }"), ["E0004"]);
+    assert_eq!(error_codes("surface t () { Ci = 0.5ff; }"), ["E0004"]);
+}
+
+/// Gamma with `pow (Ct, 1/2.2)`: colour powers by a float and by a colour, per component.
+#[test]
+fn colour_powers() {
+    let v =
+        runs("surface t () { Ci = pow (color (0.25, 0.5, 4) * Cs, 0.5) + pow (color (2, 3, 4), color (2, 1, 0.5)); }");
+    for c in v {
+        let want = [0.5 + 4.0, 0.5f64.sqrt() + 3.0, 2.0 + 2.0];
+        assert!(c.iter().zip(want).all(|(a, b)| (a - b).abs() < 1e-5), "{c:?}");
+    }
+    assert_eq!(error_codes("surface t () { Ci = pow (P, 2); }"), ["E0202"]);
+}
+
+/// Pixie's and Aqsis' area lights set `N` before `illuminate (P, N, PI/2)` (W0007); an
+/// `illuminance` loop in a light shader is checked but never runs (W0008); PRMan's area-shadow
+/// option `"source"` with its four points is ignored (W0008).
+#[test]
+fn light_shader_leniencies() {
+    let area = r#"light arealight (float intensity = 1; color lightcolor = 1;)
+        {
+            N = normalize (N);
+            illuminate (P, N, PI/2) {
+                Cl = intensity * lightcolor * (N . normalize (L)) / (L . L);
+            }
+        }"#;
+    assert_eq!(warning_codes(area), ["W0007"]);
+    runs(area);
+    let looped = r#"light t (float k = 1;)
+        {
+            color seen = 0;
+            illuminance (P) { seen += 1; }
+            solar () { Cl = k + seen; }
+        }"#;
+    assert_eq!(warning_codes(looped), ["W0008"]);
+    let c = compile_source("t.sl", looped, &CompileOptions::default()).expect("checks");
+    let mut loops = 0;
+    anysl_rsl::ir::walk(&c.module.func.body, &mut |n| {
+        loops += usize::from(matches!(n, anysl_rsl::ir::Node::Illuminance { .. }))
+    });
+    assert_eq!(loops, 0, "the loop is not emitted");
+    let source = r#"light t (string maplist = ""; point p0 = 0, p1 = 0, p2 = 0, p3 = 0;)
+        {
+            illuminate (point (0, 0, 1)) {
+                Cl = 1 - shadow (maplist, Ps, "source", p0, p1, p2, p3, "samples", 4, "bias", 0.01);
+            }
+        }"#;
+    assert_eq!(warning_codes(source), ["W0008"]);
+    runs(source);
+    // N stays read-only in the other shader types, and `illuminance` is still wrong in them.
+    assert_eq!(error_codes("surface t () { Ng = N; }"), ["E0220"]);
+    assert_eq!(error_codes("displacement t () { illuminance (P) { } }"), ["E0211"]);
+}
+
+/// PRMan 13's `arraylength`: a constant for the fixed-size arrays of RSL here.
+#[test]
+fn array_lengths() {
+    let v = runs(
+        r#"float total (float a[]) { float i, t = 0; for (i = 0; i < arraylength (a); i += 1) t += a[i]; return t; }
+        surface t () { float a[3] = {1, 2, 3}; Ci = color (arraylength (a), total (a), 0); }"#,
+    );
+    assert!(v.iter().all(|c| *c == [3.0, 6.0, 0.0]), "{v:?}");
+    assert_eq!(error_codes("surface t () { Ci = arraylength (s); }"), ["E0202"]);
 }

@@ -513,6 +513,14 @@ pub struct ParamMeta {
     pub span: Span,
 }
 
+/// The name of the hidden uniform float parameter that says whether the parameter `name`,
+/// whose default is computed when the shader runs (`vector dir = normalize(dPdu)`), keeps its
+/// default: 1 (its default) until the parameter is set, when setters make it 0.
+#[must_use]
+pub fn default_flag_name(name: &str) -> String {
+    format!("__default_{name}")
+}
+
 /// The shader's code.
 #[derive(Clone, Debug, PartialEq, Default)]
 pub struct Function {

@@ -38,6 +38,9 @@ impl<'a, 'd> Lowerer<'a, 'd> {
         if !user.is_empty() {
             return self.user_call(e, name, &user, args, expected);
         }
+        if name.name == "arraylength" && args.len() == 1 {
+            return self.array_length(&args[0]);
+        }
         if !builtins::exists(&name.name) {
             let mut d =
                 Diagnostic::error(codes::UNKNOWN_FUNCTION, name.span, format!("unknown function `{}`", name.name))
@@ -96,6 +99,25 @@ impl<'a, 'd> Lowerer<'a, 'd> {
         t
     }
 
+    /// `arraylength (a)` (PRMan 13): the length of a fixed-size array, a constant. (Arrays here
+    /// always have a size known to the compiler: an unsized array parameter of a function
+    /// takes the length of the argument it is inlined with.)
+    fn array_length(&mut self, a: &'a Expr) -> R {
+        let v = self.expr(a, None)?;
+        match v.ty.array {
+            Some(n) => Some(self.constant(Const::Float(f64::from(n)), BaseType::Float, a.span)),
+            None => {
+                self.err(
+                    codes::NO_OVERLOAD,
+                    a.span,
+                    format!("`arraylength` takes an array, not {}", an_t(v.ty)),
+                    "not an array",
+                );
+                None
+            }
+        }
+    }
+
     fn builtin_call(&mut self, e: &'a Expr, name: &'a ast::Ident, args: &'a [Expr], expected: Option<BaseType>) -> R {
         let outs = self.output_positions(&name.name, args.len());
         let mut vals: Vec<CallArg> = Vec::new();
@@ -103,7 +125,29 @@ impl<'a, 'd> Lowerer<'a, 'd> {
         // Spans of the arguments as lowered (channel selection appends two).
         let mut spans: Vec<Span> = args.iter().map(|a| a.span).collect();
         let mut channel: Option<(Val, Span)> = None;
+        // Arguments checked but not passed (PRMan's area-shadow `"source", p0, p1, p2, p3`).
+        let mut dropped: Vec<usize> = Vec::new();
         for (k, a) in args.iter().enumerate() {
+            if dropped.contains(&k) {
+                self.expr(a, Some(BaseType::Point));
+                continue;
+            }
+            if name.name == "shadow"
+                && k >= 2
+                && matches!(&a.kind, ExprKind::Str(o) if o == "source")
+                && k + 4 < args.len()
+            {
+                self.report(
+                    Diagnostic::warning(
+                        codes::NO_EFFECT,
+                        a.span,
+                        "the area-shadow option \"source\" (four points, PRMan) is ignored: the map is read as from a point",
+                    )
+                    .with_label("ignored with its four points"),
+                );
+                dropped.extend(k..k + 5);
+                continue;
+            }
             // `texture ("name"[n], …)`, `environment (envname[3], …)`: channel selection on the
             // map name (PRMan, BMRT, Aqsis) — the name, plus a `"firstchannel", n` option.
             if k == 0 && matches!(name.name.as_str(), "texture" | "environment" | "shadow") {
@@ -140,6 +184,9 @@ impl<'a, 'd> Lowerer<'a, 'd> {
         }
         if failed {
             return None;
+        }
+        for &k in dropped.iter().rev() {
+            spans.remove(k);
         }
         if let Some((i, span)) = channel {
             let opt = self.constant(Const::Str("firstchannel".into()), BaseType::String, span);

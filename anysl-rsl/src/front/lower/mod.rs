@@ -352,8 +352,9 @@ impl<'a, 'd> Lowerer<'a, 'd> {
         self.push_scope(false);
         let mut params = Vec::new();
         let mut env: HashMap<String, (Const, BaseType)> = HashMap::new();
+        // Parameters whose default is computed at run time: (parameter, its slot).
+        let mut computed: Vec<(&'a ast::Param, SlotId)> = Vec::new();
         for (i, p) in sh.params.iter().enumerate() {
-            let detail = p.ty.detail.unwrap_or(Detail::Uniform);
             let array = match p.array {
                 None => None,
                 Some(Some(n)) => Some(n),
@@ -362,17 +363,41 @@ impl<'a, 'd> Lowerer<'a, 'd> {
                     Some(0)
                 }
             };
+            let declared = p.ty.detail.unwrap_or(Detail::Uniform);
+            let mut space = None;
+            let evaluated = p.default.as_ref().map(|e| {
+                let mut ce = ConstEval { env: &env, diags: Vec::new() };
+                let r = ce.eval_to(e, Type { base: p.ty.base, detail: declared, array }, &mut space);
+                (r, ce.diags)
+            });
+            // A default that is an expression of the shading point or a call the compiler
+            // cannot fold (`normalize(dPdu)`, `Cs`): PRMan and BMRT evaluate it when the shader
+            // runs, so it is computed at the start of the body unless the parameter is given.
+            let runtime = array.is_none()
+                && p.ty.base != BaseType::Void
+                && matches!(&evaluated, Some((None, ds)) if !ds.is_empty() && ds.iter().all(|d| d.code == codes::NON_CONSTANT_DEFAULT));
+            let mut detail = declared;
+            if runtime && detail == Detail::Uniform && p.ty.base != BaseType::String {
+                detail = Detail::Varying;
+            }
+            if detail == Detail::Uniform && self.promote.contains(&p.name.span) {
+                detail = Detail::Varying;
+                self.warn_promoted(p.name.span, &p.name.name, "parameter");
+            }
             let ty = Type { base: p.ty.base, detail, array };
             if p.ty.base == BaseType::Void {
                 self.err(codes::TYPE_MISMATCH, p.ty.span, "a parameter cannot be void", "void parameter");
             }
             let slot = self.new_slot(&p.name.name, ty, SlotKind::Param(i as u32), p.span);
-            let mut space = None;
-            let default = match &p.default {
-                Some(e) => {
-                    let mut ce = ConstEval { env: &env, diags: Vec::new() };
-                    let r = ce.eval_to(e, ty, &mut space);
-                    for d in ce.diags {
+            let default = match evaluated {
+                Some(_) if runtime => {
+                    self.warn_computed_default(p, declared != detail);
+                    computed.push((p, slot));
+                    space = None;
+                    zero_const(ty)
+                }
+                Some((r, ds)) => {
+                    for d in ds {
                         self.report(d);
                     }
                     r.unwrap_or_else(|| zero_const(ty))
@@ -387,7 +412,9 @@ impl<'a, 'd> Lowerer<'a, 'd> {
                     zero_const(ty)
                 }
             };
-            env.insert(p.name.name.clone(), (default.clone(), p.ty.base));
+            if !runtime {
+                env.insert(p.name.name.clone(), (default.clone(), p.ty.base));
+            }
             params.push(ParamMeta {
                 name: p.name.name.clone(),
                 ty,
@@ -402,6 +429,24 @@ impl<'a, 'd> Lowerer<'a, 'd> {
                 VarInfo { binding: Binding::Slot(slot), span: p.name.span, read_only: false, flow: 0 },
             );
         }
+        // One hidden uniform flag per computed default, after the declared parameters: 1 while
+        // the parameter keeps its default (setting the parameter clears it).
+        let mut flags = Vec::new();
+        for (p, _) in &computed {
+            let ty = Type::uniform(BaseType::Float);
+            let name = ir::default_flag_name(&p.name.name);
+            let slot = self.new_slot(&name, ty, SlotKind::Param(params.len() as u32), p.span);
+            params.push(ParamMeta {
+                name,
+                ty,
+                default: Const::Float(1.0),
+                output: false,
+                slot,
+                span: p.span,
+                space: None,
+            });
+            flags.push(slot);
+        }
         self.frames.push(FrameCtx {
             func: None,
             ret_slot: None,
@@ -409,6 +454,21 @@ impl<'a, 'd> Lowerer<'a, 'd> {
             varying_exit: false,
             flow_at_entry: 0,
         });
+        // The computed defaults, in parameter order (a default may read earlier parameters).
+        for ((p, slot), flag) in computed.iter().zip(flags) {
+            let Some(e) = &p.default else { continue };
+            let f = self.inst(Op::Load(flag), Vec::new(), Type::uniform(BaseType::Float), false, e.span);
+            let cond = self.inst(Op::Convert, vec![f.v], Type::uniform(BaseType::Float), true, e.span);
+            self.push_block();
+            let ty = self.slot_ty(*slot);
+            if let Some(v) = self.expr(e, Some(ty.base)) {
+                if let Some(v) = self.check_store(v, ty, e.span, &p.name.name, p.name.span) {
+                    self.store(&place::Place { slot: *slot, index: None, ty }, v);
+                }
+            }
+            let then = self.pop_block();
+            self.emit(Node::If { cond: cond.v, then, otherwise: Vec::new() });
+        }
         self.push_scope(false);
         for s in &sh.body.stmts {
             self.stmt(s);
@@ -432,6 +492,25 @@ impl<'a, 'd> Lowerer<'a, 'd> {
             params,
             func: std::mem::take(&mut self.func),
         })
+    }
+}
+
+impl Lowerer<'_, '_> {
+    /// W0006: the default of `p` is computed when the shader runs; `made_varying` when the
+    /// parameter, uniform as declared, is made varying to hold it.
+    fn warn_computed_default(&mut self, p: &ast::Param, made_varying: bool) {
+        let Some(e) = &p.default else { return };
+        let mut d = Diagnostic::warning(
+            codes::COMPUTED_DEFAULT,
+            e.span,
+            format!("the default of `{}` is not a constant: it is computed when the shader runs", p.name.name),
+        )
+        .with_label("computed at each shading point")
+        .with_note("as PRMan and BMRT do: a value given for the parameter replaces it");
+        if made_varying {
+            d = d.with_note(format!("`{}` is made varying to hold it", p.name.name));
+        }
+        self.report(d);
     }
 }
 

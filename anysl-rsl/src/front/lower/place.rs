@@ -6,7 +6,7 @@ use super::typing::{binary_type, binop, global_access};
 use super::{an_t, type_name, Lowerer, Val, R};
 use crate::builtins::{self, Builtin, OVERLOADS};
 use crate::diag::{codes, Diagnostic};
-use crate::front::ast::{AssignOp, BinaryOp, Expr, ExprKind};
+use crate::front::ast::{AssignOp, BinaryOp, Expr, ExprKind, ShaderType};
 use crate::ir::{Global, Node, Op, SlotId};
 use crate::span::Span;
 use crate::types::{BaseType, Detail, Type};
@@ -42,12 +42,9 @@ impl<'a, 'd> Lowerer<'a, 'd> {
                 Binding::Slot(s) if !v.read_only => {
                     let decl_flow = v.flow;
                     let ty = self.slot_ty(s);
-                    if ty.detail == Detail::Uniform
-                        && self.flow() > decl_flow
-                        && self.frames.last().is_some_and(|f| f.func.is_some())
-                        && !self.promote.contains(&v.span)
-                    {
-                        // A local of a function (inlined here): lowered again as varying.
+                    if ty.detail == Detail::Uniform && self.flow() > decl_flow && !self.promote.contains(&v.span) {
+                        // A local or a shader parameter: lowered again as varying (a warning at
+                        // its declaration says so).
                         self.want_promote.insert(v.span);
                     } else if ty.detail == Detail::Uniform && self.flow() > decl_flow {
                         self.report(
@@ -78,7 +75,19 @@ impl<'a, 'd> Lowerer<'a, 'd> {
             },
             Some(Found::Global(g)) => {
                 let (_, write) = global_access(self.kind, g);
-                if !write {
+                if !write && self.kind == ShaderType::Light && g == Global::N {
+                    // Pixie's and Aqsis' area lights set N (the light's own normal) before
+                    // `illuminate (P, N, PI/2)`; it only changes what this shader reads.
+                    self.report(
+                        Diagnostic::warning(
+                            codes::WRITTEN_GLOBAL,
+                            e.span,
+                            "assignment to N, read-only in a light shader by the RenderMan spec: accepted as Pixie and Aqsis do",
+                        )
+                        .with_label("N set here")
+                        .with_note("the new N is seen by the rest of this light shader only"),
+                    );
+                } else if !write {
                     let d = Diagnostic::error(
                         codes::READ_ONLY,
                         e.span,
