@@ -14,7 +14,7 @@ use anysl_core::{ParamValue, PointContext, Shader};
 use anysl_rsl::back::interp::{release, run_batch, InterpLight, InterpShader, Program};
 use anysl_rsl::ir::{Const, Global};
 use anysl_rsl::passes::{optimize, PassOptions};
-use anysl_rsl::{compile_file, compile_source, CompileOptions, Compiled};
+use anysl_rsl::{compile_file_all, compile_source, CompileOptions, Compiled};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
@@ -133,25 +133,28 @@ fn corpus() {
     let (mut checked, mut ran) = (0, 0);
     for f in &files {
         let rel = f.strip_prefix(&dir).unwrap_or(f).display().to_string();
-        let c = match compile_file(f, &opts) {
-            Ok(c) => c,
-            Err(e) => {
-                let first = e.to_string().lines().find(|l| l.contains("error")).unwrap_or("?").to_string();
-                println!("{rel}\tCHECK-FAIL\t{first}");
-                continue;
-            }
-        };
-        checked += 1;
-        let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| interpret(c, 2)));
-        match r {
-            Ok(Ok(v)) => {
-                ran += 1;
-                let nan = v.iter().flatten().any(|x| !x.is_finite());
-                println!("{rel}\tok{}", if nan { "\t(non-finite output)" } else { "" });
-            }
-            Ok(Err(e)) => println!("{rel}\tRUN-FAIL\t{e}"),
-            Err(_) => println!("{rel}\tRUN-PANIC"),
+        // Every shader of the file, as `rslc check` does.
+        let all = compile_file_all(f, &opts);
+        if let Some(Err(e)) = all.iter().find(|r| r.is_err()) {
+            let first = e.to_string().lines().find(|l| l.contains("error")).unwrap_or("?").to_string();
+            println!("{rel}\tCHECK-FAIL\t{first}");
+            continue;
         }
+        checked += 1;
+        let mut status = String::from("ok");
+        for c in all.into_iter().flatten() {
+            let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| interpret(c, 2)));
+            match r {
+                Ok(Ok(v)) if v.iter().flatten().any(|x| !x.is_finite()) => status = "ok\t(non-finite output)".into(),
+                Ok(Ok(_)) => {}
+                Ok(Err(e)) => status = format!("RUN-FAIL\t{e}"),
+                Err(_) => status = "RUN-PANIC".into(),
+            }
+        }
+        if status.starts_with("ok") {
+            ran += 1;
+        }
+        println!("{rel}\t{status}");
     }
     let n = files.len().max(1);
     println!("{} files: check {checked} ({}%), interpreter {ran} ({}%)", files.len(), 100 * checked / n, 100 * ran / n);
@@ -470,8 +473,13 @@ fn light_shader_leniencies() {
         }"#;
     assert_eq!(warning_codes(source), ["W0008"]);
     runs(source);
-    // N stays read-only in the other shader types, and `illuminance` is still wrong in them.
+    // Pixie's mirror normalizes I in place (W0007); Ng stays read-only, N in imagers does not
+    // exist, and `illuminance` is still wrong in displacement shaders.
+    let mirror = "surface t () { I = normalize (I); Ci = color (I . I); }";
+    assert_eq!(warning_codes(mirror), ["W0007"]);
+    assert!(runs(mirror).iter().all(|c| (c[0] - 1.0).abs() < 1e-6));
     assert_eq!(error_codes("surface t () { Ng = N; }"), ["E0220"]);
+    assert_eq!(error_codes("light t () { I = 0; solar () { Cl = 1; } }"), ["E0220"]);
     assert_eq!(error_codes("displacement t () { illuminance (P) { } }"), ["E0211"]);
 }
 
@@ -484,4 +492,70 @@ fn array_lengths() {
     );
     assert!(v.iter().all(|c| *c == [3.0, 6.0, 0.0]), "{v:?}");
     assert_eq!(error_codes("surface t () { Ci = arraylength (s); }"), ["E0202"]);
+}
+
+/// A file of several shaders: `rslc check` checks each (PRMan's `shader` compiles them all),
+/// and an error in one of them is reported as that shader's.
+#[test]
+fn several_shaders_in_one_file() {
+    let dir = std::env::temp_dir().join(format!("anysl-several-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let f = dir.join("pair.sl");
+    std::fs::write(&f, "surface one () { Ci = 1; }\nlight two () { solar () { Cl = 1; } }\n").expect("write");
+    let all = anysl_rsl::compile_file_all(&f, &CompileOptions::default());
+    let names: Vec<String> = all.iter().map(|r| r.as_ref().expect("checks").module.name.clone()).collect();
+    assert_eq!(names, ["one", "two"]);
+    std::fs::write(&f, "surface one () { Ci = 1; }\nsurface two () { Ci = nosuch; }\n").expect("write");
+    let all = anysl_rsl::compile_file_all(&f, &CompileOptions::default());
+    assert!(all[0].is_ok() && all[1].is_err());
+    // One named shader, as before.
+    let one = CompileOptions { shader: Some("one".into()), ..CompileOptions::default() };
+    assert_eq!(anysl_rsl::compile_file_all(&f, &one).len(), 1);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Pixie's shadowarea.sl: `visibility (Ps, P)` is PRMan's `transmission` (W0009); outside a
+/// scene nothing blocks, so the light is unshadowed.
+#[test]
+fn pixie_visibility() {
+    let src = r#"light shadowarea (float intensity = 1; color lightcolor = 1;)
+        {
+            N = normalize (N);
+            illuminate (P, N, PI/2) {
+                Cl = visibility (Ps, P) * intensity * lightcolor * (N . normalize (L)) / (L . L);
+            }
+        }"#;
+    assert_eq!(warning_codes(src), ["W0007", "W0009"]);
+    runs(src);
+    assert_eq!(error_codes("surface t () { Ci = visibility (P); }"), ["E0203"]);
+}
+
+/// The RenderMan Companion's windowhighlight (listing 16.20) reads `Ps` in a surface shader:
+/// read as `P` (W0009). Light-only globals stay errors there.
+#[test]
+fn ps_in_a_surface_shader() {
+    let src = "surface t () { Ci = color (Ps - P) + 0.5; }";
+    assert_eq!(warning_codes(src), ["W0009"]);
+    assert!(runs(src).iter().all(|c| *c == [0.5, 0.5, 0.5]));
+    assert_eq!(error_codes("surface t () { Ci = Cl; }"), ["E0211"]);
+    assert_eq!(error_codes("displacement t () { P = Ps; }"), ["E0211"]);
+}
+
+/// Aqsis' point-based GI examples and PRMan 13: `bake3d` and `texture3d` are checked and answered
+/// as with no point cloud (W0008): 0, outputs unchanged.
+#[test]
+fn point_cloud_calls() {
+    let src = r#"surface t (string cloud = "";)
+        {
+            normal Nn = normalize (N);
+            float ok = bake3d (cloud, "", P, Nn, "_area", area (P), "_radiosity", Cs, "interpolate", 1);
+            color rad = 0.25;
+            float found = texture3d (cloud, P, Nn, "_radiosity", rad);
+            Ci = color (ok, found, comp (rad, 0));
+        }"#;
+    assert_eq!(warning_codes(src), ["W0008", "W0008"]);
+    assert!(runs(src).iter().all(|c| *c == [0.0, 0.0, 0.25]));
+    assert_eq!(error_codes("surface t () { float x = bake3d (\"f\", \"\", P); }"), ["E0203"]);
+    assert_eq!(error_codes("surface t () { float x = texture3d (\"f\", P, N, \"a\", 1); }"), ["E0212"]);
+    assert_eq!(error_codes("surface t () { float x = bake3d (\"f\", \"\", P, N, 3, 1); }"), ["E0204"]);
 }

@@ -41,6 +41,21 @@ impl<'a, 'd> Lowerer<'a, 'd> {
         if name.name == "arraylength" && args.len() == 1 {
             return self.array_length(&args[0]);
         }
+        if matches!(name.name.as_str(), "bake3d" | "texture3d") && !builtins::exists(&name.name) {
+            return self.point_cloud_call(e, name, args);
+        }
+        if name.name == "visibility" {
+            // Pixie's `visibility (from, to)`: what PRMan calls `transmission`.
+            self.report(
+                Diagnostic::warning(
+                    codes::OTHER_NAME,
+                    name.span,
+                    "`visibility` (Pixie) is read as `transmission`, its RenderMan name",
+                )
+                .with_label("transmission (from, to)"),
+            );
+            return self.builtin_call(e, "transmission", args, expected);
+        }
         if !builtins::exists(&name.name) {
             let mut d =
                 Diagnostic::error(codes::UNKNOWN_FUNCTION, name.span, format!("unknown function `{}`", name.name))
@@ -60,7 +75,7 @@ impl<'a, 'd> Lowerer<'a, 'd> {
             }
             return None;
         }
-        self.builtin_call(e, name, args, expected)
+        self.builtin_call(e, &name.name, args, expected)
     }
 
     /// Positions that are `output` in every overload of `name` taking `n` arguments.
@@ -118,8 +133,63 @@ impl<'a, 'd> Lowerer<'a, 'd> {
         }
     }
 
-    fn builtin_call(&mut self, e: &'a Expr, name: &'a ast::Ident, args: &'a [Expr], expected: Option<BaseType>) -> R {
-        let outs = self.output_positions(&name.name, args.len());
+    /// PRMan 13's and Aqsis' point-cloud calls, `bake3d (file, channels, P, N, "name", value,
+    /// …)` and `texture3d (file, P, N, "name", output value, …)`: checked, and answered as
+    /// outside a renderer that keeps point clouds — nothing is written, nothing is found (0),
+    /// the outputs keep their values (W0008).
+    fn point_cloud_call(&mut self, e: &'a Expr, name: &'a ast::Ident, args: &'a [Expr]) -> R {
+        let bake = name.name == "bake3d";
+        let fixed: &[BaseType] = if bake {
+            &[BaseType::String, BaseType::String, BaseType::Point, BaseType::Normal]
+        } else {
+            &[BaseType::String, BaseType::Point, BaseType::Normal]
+        };
+        if args.len() < fixed.len() || (args.len() - fixed.len()) % 2 != 0 {
+            let n = fixed.len();
+            self.report(
+                Diagnostic::error(
+                    codes::ARG_COUNT,
+                    e.span,
+                    format!("`{}` does not take {} arguments", name.name, args.len()),
+                )
+                .with_label(format!("{} given", args.len()))
+                .with_note(format!("it takes {n} and then \"name\", value pairs")),
+            );
+            return None;
+        }
+        let mut ok = true;
+        for (k, a) in args.iter().enumerate() {
+            let want = fixed.get(k).copied().or_else(|| ((k - fixed.len()) % 2 == 0).then_some(BaseType::String));
+            match want {
+                Some(t) => ok &= self.typed(a, t, &format!("argument {} of {}", k + 1, name.name)).is_some(),
+                None if bake => ok &= self.expr(a, None).is_some(),
+                None => ok &= self.place(a, "output").is_some(),
+            }
+        }
+        if !ok {
+            return None;
+        }
+        self.report(
+            Diagnostic::warning(
+                codes::NO_EFFECT,
+                name.span,
+                format!(
+                    "`{}`: point clouds are not kept here; {}",
+                    name.name,
+                    if bake {
+                        "nothing is written (returns 0)"
+                    } else {
+                        "nothing is found (returns 0, outputs unchanged)"
+                    }
+                ),
+            )
+            .with_label("no point cloud"),
+        );
+        Some(self.constant(Const::Float(0.0), BaseType::Float, e.span))
+    }
+
+    fn builtin_call(&mut self, e: &'a Expr, name: &str, args: &'a [Expr], expected: Option<BaseType>) -> R {
+        let outs = self.output_positions(name, args.len());
         let mut vals: Vec<CallArg> = Vec::new();
         let mut failed = false;
         // Spans of the arguments as lowered (channel selection appends two).
@@ -132,10 +202,7 @@ impl<'a, 'd> Lowerer<'a, 'd> {
                 self.expr(a, Some(BaseType::Point));
                 continue;
             }
-            if name.name == "shadow"
-                && k >= 2
-                && matches!(&a.kind, ExprKind::Str(o) if o == "source")
-                && k + 4 < args.len()
+            if name == "shadow" && k >= 2 && matches!(&a.kind, ExprKind::Str(o) if o == "source") && k + 4 < args.len()
             {
                 self.report(
                     Diagnostic::warning(
@@ -150,7 +217,7 @@ impl<'a, 'd> Lowerer<'a, 'd> {
             }
             // `texture ("name"[n], …)`, `environment (envname[3], …)`: channel selection on the
             // map name (PRMan, BMRT, Aqsis) — the name, plus a `"firstchannel", n` option.
-            if k == 0 && matches!(name.name.as_str(), "texture" | "environment" | "shadow") {
+            if k == 0 && matches!(name, "texture" | "environment" | "shadow") {
                 if let ExprKind::Index(base, idx) = &a.kind {
                     if let Some(b) = self.expr(base, Some(BaseType::String)) {
                         if b.ty.base == BaseType::String && b.ty.array.is_none() {
@@ -172,7 +239,7 @@ impl<'a, 'd> Lowerer<'a, 'd> {
                 }
             } else {
                 let hint = if matches!(a.kind, ExprKind::Triple(_)) {
-                    self.unique_param(&name.name, args.len(), k).or(expected.filter(|t| t.is_triple()))
+                    self.unique_param(name, args.len(), k).or(expected.filter(|t| t.is_triple()))
                 } else {
                     None
                 };
@@ -196,10 +263,10 @@ impl<'a, 'd> Lowerer<'a, 'd> {
             spans.push(span);
         }
         let types: Vec<Type> = vals.iter().map(CallArg::ty).collect();
-        let k = match builtins::resolve_expecting(&name.name, &types, expected) {
+        let k = match builtins::resolve_expecting(name, &types, expected) {
             Ok(k) => k,
             Err(err) => {
-                self.no_overload(e, &name.name, args, &types, err, builtins::overloads_of(&name.name).collect());
+                self.no_overload(e, name, args, &types, err, builtins::overloads_of(name).collect());
                 return None;
             }
         };
@@ -224,7 +291,7 @@ impl<'a, 'd> Lowerer<'a, 'd> {
                 CallArg::Place(pl) => {
                     if pl.index.is_some() {
                         // An array element: written through a temporary, copied back below.
-                        let t = self.new_slot(&format!("{}.out", name.name), pl.ty, SlotKind::Local, spans[i]);
+                        let t = self.new_slot(&format!("{name}.out"), pl.ty, SlotKind::Local, spans[i]);
                         outputs.push(Some(t));
                         copy_out.push((t, pl, spans[i]));
                     } else {
@@ -244,7 +311,7 @@ impl<'a, 'd> Lowerer<'a, 'd> {
                     Diagnostic::error(
                         codes::VARYING_TO_UNIFORM,
                         span,
-                        format!("`{}` writes a varying value into the uniform variable `{n}`", name.name),
+                        format!("`{name}` writes a varying value into the uniform variable `{n}`"),
                     )
                     .with_label("uniform output")
                     .with_note(format!("declare `{n}` varying")),

@@ -16,9 +16,12 @@
 //!   detail, so each call is checked with the actual argument details. Recursion is an error.
 //!   Functions that are never called are checked once with their declared types.
 //! * **Uniform/varying.** Parameters default to uniform, locals to varying. A varying value
-//!   stored into a uniform variable is [`codes::VARYING_TO_UNIFORM`]; storing into a uniform
-//!   variable declared outside the innermost varying `if`/loop/light loop (or after a varying
-//!   `break`/`return`) is [`codes::UNIFORM_IN_VARYING_FLOW`].
+//!   stored into a uniform variable is [`codes::VARYING_TO_UNIFORM`]. A uniform local or
+//!   parameter stored into under varying control flow (inside a varying `if`/loop/light loop
+//!   declared outside it, or after a varying `break`/`return`) is made varying, with the
+//!   warning [`codes::PROMOTED_TO_VARYING`]: the shader is lowered again with it varying, as
+//!   PRMan, BMRT and Aqsis compiled such shaders. A uniform *output argument* stored into that
+//!   way stays [`codes::UNIFORM_IN_VARYING_FLOW`] (the caller's variable is uniform).
 //! * **Return type by context.** Every expression is lowered with an *expected* base type (the
 //!   declaration, assignment or cast target, passed down through arithmetic and `?:`); it picks
 //!   among built-in overloads that differ only in their return type (`color noise(P)`) and
@@ -28,7 +31,11 @@
 //!   point-like default in a named space keeps the space in [`ParamMeta::space`]; a colour in a
 //!   named colour space is converted to RGB at compile time. The arithmetic and the built-ins
 //!   are computed by the constant folder ([`passes::fold`](crate::passes::fold)), the one
-//!   constant evaluator of the compiler.
+//!   constant evaluator of the compiler. A default that is not a constant (`normalize(dPdu)`,
+//!   `Cs`) is computed at the start of the body, when the hidden uniform parameter
+//!   [`ir::default_flag_name`] (1 by default, cleared by the setters) says the parameter kept
+//!   its default ([`codes::COMPUTED_DEFAULT`]); such a parameter is made varying (strings stay
+//!   uniform).
 //!
 //! # Files
 //!

@@ -75,17 +75,27 @@ impl<'a, 'd> Lowerer<'a, 'd> {
             },
             Some(Found::Global(g)) => {
                 let (_, write) = global_access(self.kind, g);
-                if !write && self.kind == ShaderType::Light && g == Global::N {
-                    // Pixie's and Aqsis' area lights set N (the light's own normal) before
-                    // `illuminate (P, N, PI/2)`; it only changes what this shader reads.
+                // Pixie's and Aqsis' area lights set N (the light's own normal) before
+                // `illuminate (P, N, PI/2)`; Pixie's mirror normalizes I in place. Only this
+                // shader sees the new value (no renderer reads them back).
+                let local_write = match g {
+                    Global::N => self.kind == ShaderType::Light,
+                    Global::I => !matches!(self.kind, ShaderType::Light | ShaderType::Imager),
+                    _ => false,
+                };
+                if !write && local_write {
                     self.report(
                         Diagnostic::warning(
                             codes::WRITTEN_GLOBAL,
                             e.span,
-                            "assignment to N, read-only in a light shader by the RenderMan spec: accepted as Pixie and Aqsis do",
+                            format!(
+                                "assignment to {}, read-only in a {} shader by the RenderMan spec: accepted as Pixie and Aqsis do",
+                                g.name(),
+                                self.kind.keyword()
+                            ),
                         )
-                        .with_label("N set here")
-                        .with_note("the new N is seen by the rest of this light shader only"),
+                        .with_label(format!("{} set here", g.name()))
+                        .with_note(format!("the new {} is seen by the rest of this shader only", g.name())),
                     );
                 } else if !write {
                     let d = Diagnostic::error(
