@@ -177,6 +177,8 @@ pub mod codes {
     /// Warning: another renderer's or book's name, read as its RenderMan equivalent (Pixie's
     /// `visibility` as `transmission`, `Ps` in a surface shader as `P`).
     pub const OTHER_NAME: &str = "W0009";
+    /// Warning: a `#warning` directive (its text).
+    pub const PP_WARNING: &str = "W0010";
 }
 
 /// A list of diagnostics from one compilation.

@@ -559,3 +559,19 @@ fn point_cloud_calls() {
     assert_eq!(error_codes("surface t () { float x = texture3d (\"f\", P, N, \"a\", 1); }"), ["E0212"]);
     assert_eq!(error_codes("surface t () { float x = bake3d (\"f\", \"\", P, N, 3, 1); }"), ["E0204"]);
 }
+
+/// Preprocessor forms of C compilers' cpp: variadic macros (`...`, `__VA_ARGS__`), `#warning`
+/// (a warning, W0010), `#ident` and `#sccs` (ignored).
+#[test]
+fn preprocessor_forms() {
+    let src = r#"#ident "$Id: t.sl 1.1$"
+        #warning "old file"
+        #define DBG(fmt, ...) printf (fmt, __VA_ARGS__)
+        #define SUM(...) max (__VA_ARGS__)
+        #define ONE(x, ...) (x)
+        surface t () { DBG ("%f %f\n", s, t); Ci = SUM (1, 2) + ONE (3) + ONE (4, 5, 6); }"#;
+    assert_eq!(warning_codes(src), ["W0010"]);
+    assert!(runs(src).iter().all(|c| *c == [9.0, 9.0, 9.0]), "{:?}", runs(src));
+    assert_eq!(error_codes("#define F(a, ...., b) a\nsurface t () { }"), ["E0011"]);
+    assert_eq!(error_codes("#define F(a, b, ...) a\nsurface t () { Ci = F (1); }"), ["E0013"]);
+}
