@@ -290,7 +290,11 @@ fn bad_calls() {
 #[test]
 fn uniform_varying_rules() {
     assert_eq!(codes("surface t() { uniform float u = s; }"), ["E0206"]);
-    assert_eq!(codes("surface t(float k = 1;) { k = s; }"), ["E0206"]);
+    assert_eq!(codes("surface t(uniform float k = 1;) { k = s; }"), ["E0206"]);
+    // A parameter uniform only by default, assigned a varying value, is made varying (Aqsis,
+    // BMRT; K-3D's graphic_lines stores lighting into such a parameter).
+    assert_eq!(warnings("surface t(float k = 1;) { k = s; Ci = k; }"), ["W0004"]);
+    assert_eq!(ok("surface t(float k = 1;) { k = s; Ci = k; }").params[0].ty.to_string(), "varying float");
     // A uniform variable or parameter assigned under varying control flow is made varying
     // with a warning (what PRMan and BMRT did), and the IR stores it as varying.
     for src in [

@@ -20,8 +20,11 @@
 //!   parameter stored into under varying control flow (inside a varying `if`/loop/light loop
 //!   declared outside it, or after a varying `break`/`return`) is made varying, with the
 //!   warning [`codes::PROMOTED_TO_VARYING`]: the shader is lowered again with it varying, as
-//!   PRMan, BMRT and Aqsis compiled such shaders. A uniform *output argument* stored into that
-//!   way stays [`codes::UNIFORM_IN_VARYING_FLOW`] (the caller's variable is uniform).
+//!   PRMan, BMRT and Aqsis compiled such shaders; so is a parameter that is uniform only by
+//!   default (no `uniform` written) when it is assigned a varying value. A uniform *output
+//!   argument* stored into under varying flow stays [`codes::UNIFORM_IN_VARYING_FLOW`] (the
+//!   caller's variable is uniform), and a declared `uniform` assigned a varying value stays
+//!   [`codes::VARYING_TO_UNIFORM`].
 //! * **Return type by context.** Every expression is lowered with an *expected* base type (the
 //!   declaration, assignment or cast target, passed down through arithmetic and `?:`); it picks
 //!   among built-in overloads that differ only in their return type (`color noise(P)`) and
@@ -175,6 +178,9 @@ struct Lowerer<'a, 'd> {
     uniform_target: bool,
     /// Declarations (name spans) of function-local `uniform` variables lowered as varying.
     promote: HashSet<Span>,
+    /// Shader parameters uniform only by default (no `uniform` written): slot → name span.
+    /// Assigned a varying value, such a parameter is made varying (Aqsis, BMRT).
+    implicit_uniform: HashMap<SlotId, Span>,
     /// Function-local `uniform` variables found assigned under varying control flow.
     want_promote: HashSet<Span>,
 }
@@ -278,6 +284,7 @@ impl<'a, 'd> Lowerer<'a, 'd> {
             ret_checked: HashSet::new(),
             uniform_target: false,
             promote: HashSet::new(),
+            implicit_uniform: HashMap::new(),
             want_promote: HashSet::new(),
         }
     }
@@ -396,6 +403,9 @@ impl<'a, 'd> Lowerer<'a, 'd> {
                 self.err(codes::TYPE_MISMATCH, p.ty.span, "a parameter cannot be void", "void parameter");
             }
             let slot = self.new_slot(&p.name.name, ty, SlotKind::Param(i as u32), p.span);
+            if p.ty.detail.is_none() && detail == Detail::Uniform {
+                self.implicit_uniform.insert(slot, p.name.span);
+            }
             let default = match evaluated {
                 Some(_) if runtime => {
                     self.warn_computed_default(p, declared != detail);

@@ -247,6 +247,14 @@ impl<'a, 'd> Lowerer<'a, 'd> {
                 self.inst(Op::Binary(binop(bop)), vec![cur.v, r.v], Type::new(base, d), false, e.span)
             }
         };
+        if value.ty.detail == Detail::Varying && place.ty.detail == Detail::Uniform && !value.is_bool {
+            if let Some(&decl) = self.implicit_uniform.get(&place.slot) {
+                // A parameter uniform only by default, assigned a varying value: lowered again
+                // as varying (warning W0004 at its declaration).
+                self.want_promote.insert(decl);
+                return None;
+            }
+        }
         let value = self.check_store(value, place.ty, rhs.span, &name, lhs.span)?;
         if let Some(i) = place.index {
             if i.ty.detail == Detail::Varying && place.ty.detail == Detail::Uniform {

@@ -521,13 +521,16 @@ impl<'a, 'd> Lowerer<'a, 'd> {
 
 impl Lowerer<'_, '_> {
     /// W0004: the uniform `what` `name` (declared at `span`) is assigned under varying control
-    /// flow, so it is lowered as varying — what PRMan, BMRT and Aqsis did with such shaders.
+    /// flow (or, for a parameter uniform only by default, a varying value), so it is lowered as
+    /// varying — what PRMan, BMRT and Aqsis did with such shaders.
     pub(super) fn warn_promoted(&mut self, span: Span, name: &str, what: &str) {
         self.report(
             Diagnostic::warning(
                 codes::PROMOTED_TO_VARYING,
                 span,
-                format!("the uniform {what} `{name}` is assigned under varying control flow; it is made varying"),
+                format!(
+                    "the uniform {what} `{name}` is assigned a varying value or under varying control flow; it is made varying"
+                ),
             )
             .with_label("made varying")
             .with_note("points may now hold different values, as the shader meant; declare it varying to silence this"),
