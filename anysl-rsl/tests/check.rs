@@ -299,12 +299,15 @@ fn uniform_varying_rules() {
     // with a warning (what PRMan and BMRT did), and the IR stores it as varying.
     for src in [
         "surface t() { uniform float u = 0; if (s > 0.5) u = 1; }",
-        "surface t() { uniform float u = 0; illuminance(P) { u += 1; } }",
         "surface t() { uniform float u; float i; for (i = 0; i < s; i += 1) u = 1; }",
         "surface t(float k = 1;) { if (s > 0.5) k = 2; Ci = k; }",
     ] {
         assert_eq!(warnings(src), ["W0004"], "{src}");
     }
+    // An illuminance body runs once per light: uniform statements are allowed there (PRMan;
+    // Advanced RenderMan's lensflare), varying values still are not.
+    assert!(warnings("surface t() { uniform float u = 0; illuminance(P) { u += 1; } Ci = u; }").is_empty());
+    assert_eq!(codes("surface t() { uniform float u = 0; illuminance(P) { u += comp(Cl, 0); } }"), ["E0206"]);
     let m = ok("surface t() { uniform float u = 0; if (s > 0.5) u = 1; Ci = u; }");
     assert!(m.func.slots.iter().any(|s| s.name == "u" && s.ty.to_string() == "varying float"));
     let m = ok("surface t(uniform float k = 1;) { if (s > 0.5) k = 2; Ci = k; }");

@@ -575,3 +575,25 @@ fn preprocessor_forms() {
     assert_eq!(error_codes("#define F(a, ...., b) a\nsurface t () { }"), ["E0011"]);
     assert_eq!(error_codes("#define F(a, b, ...) a\nsurface t () { Ci = F (1); }"), ["E0013"]);
 }
+
+/// Advanced RenderMan's lensflare draws uniform random numbers inside an illuminance loop: a
+/// uniform counter assigned there, and a uniform function reading it. One light reaches every
+/// point here, so the counter ends at 2 draws per point, the same on all.
+#[test]
+fn uniform_counter_in_illuminance() {
+    let v = runs(
+        r#"surface t (float seed = 143;)
+        {
+            uniform float nrand = 0;
+            uniform float urand () { extern uniform float nrand, seed; nrand += 1; return cellnoise (nrand, seed); }
+            float sum = 0;
+            illuminance (P, vector (0, 0, 1), PI / 2) {
+                nrand = 0;
+                uniform float a = urand ();
+                sum += a + urand ();
+            }
+            Ci = color (nrand, sum, 0);
+        }"#,
+    );
+    assert!(v.iter().all(|c| c[0] == 2.0 && c[1] == v[0][1]), "{v:?}");
+}

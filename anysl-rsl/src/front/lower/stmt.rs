@@ -131,8 +131,10 @@ impl<'a, 'd> Lowerer<'a, 'd> {
                         self.typed(b, BaseType::Float, "the illuminance angle"),
                     )
                 });
+                // The body runs once per light for the points it reaches. As in PRMan, uniform
+                // variables may be assigned there (a uniform statement runs once per light): the
+                // Advanced RenderMan lensflare counts its random draws in a uniform inside it.
                 self.light_loops += 1;
-                self.vflow += 1;
                 if let Some(f) = self.frame() {
                     f.loops.push(LoopCtx { varying: false });
                 }
@@ -140,7 +142,6 @@ impl<'a, 'd> Lowerer<'a, 'd> {
                 if let Some(f) = self.frame() {
                     f.loops.pop();
                 }
-                self.vflow -= 1;
                 self.light_loops -= 1;
                 let Some(pos) = pos else { return };
                 let cone = match cone {
