@@ -443,7 +443,7 @@ pub fn eval(
             let mut shader = InterpShader::new(prog.clone());
             for (name, c) in &values {
                 if let Some(i) = prog.module.params.iter().position(|p| &p.name == name) {
-                    shader.values[i] = c.clone();
+                    prog.module.set_param_value(&mut shader.values, i, c.clone());
                 }
             }
             if uses_derivatives {

@@ -580,6 +580,18 @@ impl Module {
             _ => false,
         })
     }
+
+    /// Stores `value` as parameter `i` of an instance's `values` (one per [`Module::params`]).
+    /// A parameter whose default is computed when the shader runs also gets its flag
+    /// ([`default_flag_name`]) cleared, so the given value is kept: every setter goes through
+    /// here.
+    pub fn set_param_value(&self, values: &mut [Const], i: usize, value: Const) {
+        let flag = default_flag_name(&self.params[i].name);
+        values[i] = value;
+        if let Some(j) = self.params.iter().position(|p| p.name == flag) {
+            values[j] = Const::Float(0.0);
+        }
+    }
 }
 
 impl Detail {

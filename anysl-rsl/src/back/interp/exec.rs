@@ -714,12 +714,7 @@ fn set_param_of(m: &Module, values: &mut [Const], name: &str, value: &ParamValue
         expected: param_type(m.params[i].ty),
         got: value.clone(),
     })?;
-    values[i] = c;
-    // A parameter with a computed default no longer takes it.
-    let flag = crate::ir::default_flag_name(name);
-    if let Some(j) = m.params.iter().position(|p| p.name == flag) {
-        values[j] = Const::Float(0.0);
-    }
+    m.set_param_value(values, i, c);
     Ok(())
 }
 
