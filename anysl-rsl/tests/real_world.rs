@@ -413,6 +413,25 @@ fn computed_parameter_defaults() {
     let got: Vec<f64> = ci.iter().map(|x| x.lane(0)).collect();
     release(fr);
     assert_eq!(got, [2.0, 7.0, 0.5]);
+    // Specialized to given values (`rslc ir --set`): the given string keeps its value (its
+    // flag is folded to 0), the unlisted one computes its default.
+    let src = r#"surface t (string a = concat ("x", "y"); string b = concat ("p", "q");) { Ci = match ("^z", a) + 2 * match ("^p", b); }"#;
+    let c = compile_source("t.sl", src, &CompileOptions::default()).expect("checks");
+    let opts = PassOptions {
+        specialize: vec![("a".into(), Const::Str("zz".into()))],
+        specialize_defaults: true,
+        ..PassOptions::default()
+    };
+    let prog = Program::new(optimize(c.module, &opts)).expect("prepares");
+    let mut ctx = [PointContext::new(globals::<f32>(0, 0, 2), &[] as &[InterpLight])];
+    // (A parameter the shader stores into is not folded: the instance passes the value too.)
+    let mut values: Vec<Const> = prog.module.params.iter().map(|p| p.default.clone()).collect();
+    prog.module.set_param_value(&mut values, 0, Const::Str("zz".into()));
+    let fr = run_batch::<f32, _>(&prog, &values, &mut ctx, &[Mask::splat(true)]);
+    let ci = fr.read(prog.global_loc(Global::Ci).expect("Ci"), 0);
+    let got: Vec<f64> = ci.iter().map(|x| x.lane(0)).collect();
+    release(fr);
+    assert_eq!(got, [3.0, 3.0, 3.0]);
 }
 
 /// `0.5f`, `1.f`: C float suffixes, read as the number with a warning (W0005); other letters
