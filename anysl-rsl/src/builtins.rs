@@ -835,6 +835,11 @@ const OVERLOAD_GROUPS: &[&[Overload]] = &[
         ov(B::FilterWidth, "filterwidth_p", Float, &[P], None, "stdlib::filterwidth_point", false),
         ov(B::FilteredPulse, "filteredpulse_fff", Float, &[F, F, F], None, "stdlib::filteredpulse", false),
     ],
+    // Colour powers, which PRMan's and BMRT's compilers took (gamma: `pow(Ct, 1/2.2)`).
+    &[
+        ov(B::Pow, "pow_cf", Color, &[C, F], None, "F::powf per component", false),
+        ov(B::Pow, "pow_cc", Color, &[C, C], None, "F::powf per component", false),
+    ],
 ];
 
 /// The number of rows in `groups`.

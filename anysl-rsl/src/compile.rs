@@ -80,6 +80,30 @@ pub fn compile_file(path: &Path, opts: &CompileOptions) -> Result<Compiled, Comp
     finish(unit, sources, diags, opts)
 }
 
+/// Compiles every shader the RSL file at `path` defines, in file order, as PRMan's `shader`
+/// command does with a file of several shaders (`opts.shader`, when given, picks one). A file
+/// with no shader or one, or with syntax errors, gives one result.
+pub fn compile_file_all(path: &Path, opts: &CompileOptions) -> Vec<Result<Compiled, CompileError>> {
+    let mut sources = SourceMap::new();
+    let mut diags = Diagnostics::new();
+    let unit = front::parse_file(&mut sources, path, &opts.pp(), &mut diags);
+    let names: Vec<String> = unit
+        .items
+        .iter()
+        .filter_map(|i| if let front::ast::Item::Shader(s) = i { Some(s.name.name.clone()) } else { None })
+        .collect();
+    if opts.shader.is_some() || names.len() < 2 || diags.has_errors() {
+        return vec![finish(unit, sources, diags, opts)];
+    }
+    names
+        .into_iter()
+        .map(|n| {
+            let one = CompileOptions { shader: Some(n), ..opts.clone() };
+            finish(unit.clone(), sources.clone(), diags.clone(), &one)
+        })
+        .collect()
+}
+
 fn finish(
     unit: front::ast::Unit,
     sources: SourceMap,

@@ -162,6 +162,23 @@ pub mod codes {
     /// Warning: a `uniform` local of a function is assigned under varying control flow, so it
     /// is made varying (BMRT's noises.h: `uniform float amp` in a loop on a varying width).
     pub const PROMOTED_TO_VARYING: &str = "W0004";
+    /// Warning: a C float suffix on a number (`0.5f`), read as the number.
+    pub const FLOAT_SUFFIX: &str = "W0005";
+    /// Warning: a shader parameter default that is not a constant (`normalize(dPdu)`); it is
+    /// computed when the shader runs unless the parameter is given.
+    pub const COMPUTED_DEFAULT: &str = "W0006";
+    /// Warning: a shader assigns a global the RenderMan spec makes read-only there, which only
+    /// that shader reads afterwards (`N` in Pixie's and Aqsis' area lights, `I` in Pixie's
+    /// mirror).
+    pub const WRITTEN_GLOBAL: &str = "W0007";
+    /// Warning: a construct a period compiler took that has no effect here (an `illuminance`
+    /// loop in a light shader, which sees no lights).
+    pub const NO_EFFECT: &str = "W0008";
+    /// Warning: another renderer's or book's name, read as its RenderMan equivalent (Pixie's
+    /// `visibility` as `transmission`, `Ps` in a surface shader as `P`).
+    pub const OTHER_NAME: &str = "W0009";
+    /// Warning: a `#warning` directive (its text).
+    pub const PP_WARNING: &str = "W0010";
 }
 
 /// A list of diagnostics from one compilation.

@@ -18,4 +18,4 @@ pub mod passes;
 pub mod span;
 pub mod types;
 
-pub use compile::{compile_file, compile_source, CompileError, CompileOptions, Compiled};
+pub use compile::{compile_file, compile_file_all, compile_source, CompileError, CompileOptions, Compiled};

@@ -37,6 +37,14 @@ fn codes(src: &str) -> Vec<&'static str> {
     errors(src).iter().filter(|d| d.severity == anysl_rsl::diag::Severity::Error).map(|d| d.code).collect()
 }
 
+/// The warning codes of a file that checks.
+fn warnings(src: &str) -> Vec<&'static str> {
+    match compile_source("test.sl", src, &CompileOptions::default()) {
+        Ok(c) => c.warnings.items.iter().map(|d| d.code).collect(),
+        Err(e) => panic!("expected no errors, got:\n{e}"),
+    }
+}
+
 fn rendered(src: &str) -> String {
     match compile_source("test.sl", src, &CompileOptions::default()) {
         Ok(_) => String::new(),
@@ -282,16 +290,40 @@ fn bad_calls() {
 #[test]
 fn uniform_varying_rules() {
     assert_eq!(codes("surface t() { uniform float u = s; }"), ["E0206"]);
-    assert_eq!(codes("surface t(float k = 1;) { k = s; }"), ["E0206"]);
-    assert_eq!(codes("surface t() { uniform float u = 0; if (s > 0.5) u = 1; }"), ["E0214"]);
-    assert_eq!(codes("surface t() { uniform float u = 0; illuminance(P) { u += 1; } }"), ["E0214"]);
-    assert_eq!(codes("surface t() { uniform float u; float i; for (i = 0; i < s; i += 1) u = 1; }"), ["E0214"]);
+    assert_eq!(codes("surface t(uniform float k = 1;) { k = s; }"), ["E0206"]);
+    // A parameter uniform only by default, assigned a varying value, is made varying (Aqsis,
+    // BMRT; K-3D's graphic_lines stores lighting into such a parameter).
+    assert_eq!(warnings("surface t(float k = 1;) { k = s; Ci = k; }"), ["W0004"]);
+    assert_eq!(ok("surface t(float k = 1;) { k = s; Ci = k; }").params[0].ty.to_string(), "varying float");
+    // A uniform variable or parameter assigned under varying control flow is made varying
+    // with a warning (what PRMan and BMRT did), and the IR stores it as varying.
+    for src in [
+        "surface t() { uniform float u = 0; if (s > 0.5) u = 1; }",
+        "surface t() { uniform float u; float i; for (i = 0; i < s; i += 1) u = 1; }",
+        "surface t(float k = 1;) { if (s > 0.5) k = 2; Ci = k; }",
+    ] {
+        assert_eq!(warnings(src), ["W0004"], "{src}");
+    }
+    // An illuminance body runs once per light: uniform statements are allowed there (PRMan;
+    // Advanced RenderMan's lensflare), varying values still are not.
+    assert!(warnings("surface t() { uniform float u = 0; illuminance(P) { u += 1; } Ci = u; }").is_empty());
+    assert_eq!(codes("surface t() { uniform float u = 0; illuminance(P) { u += comp(Cl, 0); } }"), ["E0206"]);
+    let m = ok("surface t() { uniform float u = 0; if (s > 0.5) u = 1; Ci = u; }");
+    assert!(m.func.slots.iter().any(|s| s.name == "u" && s.ty.to_string() == "varying float"));
+    let m = ok("surface t(uniform float k = 1;) { if (s > 0.5) k = 2; Ci = k; }");
+    assert_eq!(m.params[0].ty.to_string(), "varying float");
+    // A uniform output argument of a function stays an error: the caller's variable is uniform.
+    assert_eq!(
+        codes("void f(output uniform float u) { if (s > 0.5) u = 1; } surface t() { uniform float x = 0; f(x); }"),
+        ["E0214"]
+    );
     // Uniform flow is fine, as is a uniform declared inside the varying branch.
     ok("surface t(float k = 1;) { uniform float u = 0; if (k > 0) u = 1; if (s > 0) { uniform float w = 1; w = 2; } }");
+    assert!(warnings("surface t(float k = 1;) { uniform float u = 0; if (k > 0) u = 1; }").is_empty());
     // A varying break makes the rest of the loop varying.
     assert_eq!(
-        codes("surface t() { uniform float u = 0, i; for (i = 0; i < 4; i += 1) { if (s > 0.5) break; u += 1; } }"),
-        ["E0214", "E0214"] // `u += 1` and the counter's step `i += 1`
+        warnings("surface t() { uniform float u = 0, i; for (i = 0; i < 4; i += 1) { if (s > 0.5) break; u += 1; } }"),
+        ["W0004", "W0004"] // `u` (for `u += 1`) and the counter `i` (its step `i += 1`)
     );
     // Function parameters take the caller's detail.
     ok("float twice(float x) { return 2 * x; } surface t() { uniform float u = twice(3); float v = twice(s); }");
@@ -334,8 +366,21 @@ fn parameter_defaults_are_constants() {
     assert!(m.params[7].output);
     assert_eq!(m.params[0].ty.to_string(), "uniform float");
     assert_eq!(m.params[7].ty.to_string(), "varying color");
-    assert_eq!(codes("surface t(float a = s;) { }"), ["E0216"]);
-    assert_eq!(codes("surface t(float a = noise(1);) { }"), ["E0216"]);
+    // A default that is not a constant is computed when the shader runs (W0006): the
+    // parameter is made varying (unless a string), its constant default is zero, and a hidden
+    // flag parameter, 1 by default, says that the parameter keeps its default.
+    assert_eq!(warnings("surface t(float a = s;) { }"), ["W0006"]);
+    let m = ok("surface t(float a = noise(1); vector d = normalize(dPdu); string n = concat(\"a\", \"b\");) { }");
+    assert_eq!(m.params.len(), 6);
+    assert_eq!(m.params[0].ty.to_string(), "varying float");
+    assert_eq!(m.params[1].ty.to_string(), "varying vector");
+    assert_eq!(m.params[2].ty.to_string(), "uniform string");
+    assert_eq!(m.params[3].name, "__default_a");
+    assert_eq!(m.params[3].default, anysl_rsl::ir::Const::Float(1.0));
+    assert_eq!(m.params[5].name, "__default_n");
+    // Errors in such a default stay errors; a type mismatch is one.
+    assert_eq!(codes("surface t(float a = nosuch(s);) { }"), ["E0201"]);
+    assert_eq!(codes("surface t(float a = Cs;) { }"), ["E0204"]);
     assert_eq!(codes("surface t(float a = \"x\";) { }"), ["E0204"]);
 }
 
@@ -363,9 +408,9 @@ fn twenty_kinds_of_diagnostics() {
         ("E0211", "surface t() { illuminate(P) { } }"),
         ("E0212", "void f(output float x) { x = 1; } surface t() { f(2); }"),
         ("E0213", "surface t() { float a = 1; Ci = a[0]; }"),
-        ("E0214", "surface t() { uniform float u = 0; if (s > 0) u = 1; }"),
+        ("E0214", "void f(output uniform float u) { if (s > 0) u = 1; } surface t() { uniform float x = 0; f(x); }"),
         ("E0215", "surface t() { float a[2] = {1, 2, 3}; }"),
-        ("E0216", "surface t(float k = s;) { }"),
+        ("E0216", "surface t(float k;) { }"),
         ("E0217", "float f() { return f(); } surface t() { Ci = f(); }"),
         ("E0218", "float f() { return 1; }"),
         ("E0219", "float f() { } surface t() { Ci = f(); }"),

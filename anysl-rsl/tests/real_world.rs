@@ -10,11 +10,11 @@
 
 use anysl_ad::Dual;
 use anysl_core::prelude::*;
-use anysl_core::PointContext;
-use anysl_rsl::back::interp::{release, run_batch, InterpLight, Program};
+use anysl_core::{ParamValue, PointContext, Shader};
+use anysl_rsl::back::interp::{release, run_batch, InterpLight, InterpShader, Program};
 use anysl_rsl::ir::{Const, Global};
 use anysl_rsl::passes::{optimize, PassOptions};
-use anysl_rsl::{compile_file, compile_source, CompileOptions, Compiled};
+use anysl_rsl::{compile_file_all, compile_source, CompileOptions, Compiled};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
@@ -133,25 +133,28 @@ fn corpus() {
     let (mut checked, mut ran) = (0, 0);
     for f in &files {
         let rel = f.strip_prefix(&dir).unwrap_or(f).display().to_string();
-        let c = match compile_file(f, &opts) {
-            Ok(c) => c,
-            Err(e) => {
-                let first = e.to_string().lines().find(|l| l.contains("error")).unwrap_or("?").to_string();
-                println!("{rel}\tCHECK-FAIL\t{first}");
-                continue;
-            }
-        };
-        checked += 1;
-        let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| interpret(c, 2)));
-        match r {
-            Ok(Ok(v)) => {
-                ran += 1;
-                let nan = v.iter().flatten().any(|x| !x.is_finite());
-                println!("{rel}\tok{}", if nan { "\t(non-finite output)" } else { "" });
-            }
-            Ok(Err(e)) => println!("{rel}\tRUN-FAIL\t{e}"),
-            Err(_) => println!("{rel}\tRUN-PANIC"),
+        // Every shader of the file, as `rslc check` does.
+        let all = compile_file_all(f, &opts);
+        if let Some(Err(e)) = all.iter().find(|r| r.is_err()) {
+            let first = e.to_string().lines().find(|l| l.contains("error")).unwrap_or("?").to_string();
+            println!("{rel}\tCHECK-FAIL\t{first}");
+            continue;
         }
+        checked += 1;
+        let mut status = String::from("ok");
+        for c in all.into_iter().flatten() {
+            let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| interpret(c, 2)));
+            match r {
+                Ok(Ok(v)) if v.iter().flatten().any(|x| !x.is_finite()) => status = "ok\t(non-finite output)".into(),
+                Ok(Ok(_)) => {}
+                Ok(Err(e)) => status = format!("RUN-FAIL\t{e}"),
+                Err(_) => status = "RUN-PANIC".into(),
+            }
+        }
+        if status.starts_with("ok") {
+            ran += 1;
+        }
+        println!("{rel}\t{status}");
     }
     let n = files.len().max(1);
     println!("{} files: check {checked} ({}%), interpreter {ran} ({}%)", files.len(), 100 * checked / n, 100 * ran / n);
@@ -314,11 +317,13 @@ fn uniform_assignments_in_light_bodies_without_cone() {
             }
         }"#,
     );
+    // Under a cone the light's body is varying control flow: a uniform assigned there is
+    // made varying (W0004).
     assert_eq!(
-        error_codes(
+        warning_codes(
             "light t () { uniform float n = 0; illuminate (point (0,0,0), vector (0,0,1), 0.5) { n += 1; Cl = n; } }"
         ),
-        ["E0214"]
+        ["W0004"]
     );
 }
 
@@ -344,7 +349,7 @@ fn shader_type_words_as_variable_names() {
 
 /// BMRT's noises.h: `filtered_fBm` keeps `uniform float amp` in a loop whose condition
 /// (`fw < 1.0`) is varying. A uniform *local of a function* assigned under varying flow is made
-/// varying with a warning (BMRT, Aqsis); in the shader body it stays an error.
+/// varying with a warning (BMRT, Aqsis), and so is one of the shader body.
 #[test]
 fn function_locals_promoted_to_varying() {
     let src = r#"
@@ -370,10 +375,244 @@ fn function_locals_promoted_to_varying() {
         }"#;
     runs(src);
     assert_eq!(warning_codes(src), ["W0004", "W0004"]); // `amp` and the counter `i`
-                                                        // Output parameters and shader-body locals keep the rule.
+                                                        // Output parameters keep the rule: the caller's variable is uniform.
     assert_eq!(
         error_codes("void f (output uniform float u) { if (s > 0.5) u = 1; } surface t () { uniform float x; f (x); }"),
         ["E0214"]
     );
-    assert_eq!(error_codes("surface t () { uniform float u = 0; if (s > 0.5) u = 1; }"), ["E0214"]);
+    // A shader-body local: made varying, and each point keeps its own value (s = 0.25, 0.75).
+    let src = "surface t () { uniform float u = 0; if (s > 0.5) u = 1; Ci = u; }";
+    assert_eq!(warning_codes(src), ["W0004"]);
+    let v = runs(src);
+    assert_eq!(v.iter().map(|c| c[0]).collect::<Vec<_>>(), [0.0, 1.0, 0.0, 1.0]);
+}
+
+// ---- what period compilers accepted (issue 23, item 6) ------------------------------------------
+
+/// `vector xdir = normalize(dPdu)`, `color c = Cs`: a default that is not a constant is
+/// computed when the shader runs (W0006), unless the parameter is given a value.
+#[test]
+fn computed_parameter_defaults() {
+    let src = r#"surface t (vector dir = normalize (dPdu) * 2; float w = du * 3; color c = Cs * 0.5;)
+        {
+            Ci = color (xcomp (dir), w, comp (c, 0));
+        }"#;
+    assert_eq!(warning_codes(src), ["W0006", "W0006", "W0006"]);
+    // The harness grid: dPdu = (1, 0, 0), du = 1/2, Cs = 1.
+    for c in runs(src) {
+        assert!((c[0] - 2.0).abs() < 1e-6 && (c[1] - 1.5).abs() < 1e-6 && (c[2] - 0.5).abs() < 1e-6, "{c:?}");
+    }
+    // A value given for `w` replaces its default; the others still compute theirs.
+    let c = compile_source("t.sl", src, &CompileOptions::default()).expect("checks");
+    let prog = Arc::new(Program::new(optimize(c.module, &PassOptions::default())).expect("prepares"));
+    let mut shader = InterpShader::new(prog.clone());
+    shader.set_param("w", &ParamValue::Float(7.0)).expect("w is a parameter");
+    let mut ctx = [PointContext::new(globals::<Dual<f32>>(0, 0, 2), &[] as &[InterpLight])];
+    let fr = run_batch::<Dual<f32>, _>(&prog, &shader.values, &mut ctx, &[Mask::splat(true)]);
+    let ci = fr.read(prog.global_loc(Global::Ci).expect("Ci"), 0);
+    let got: Vec<f64> = ci.iter().map(|x| x.lane(0)).collect();
+    release(fr);
+    assert_eq!(got, [2.0, 7.0, 0.5]);
+    // Specialized to given values (`rslc ir --set`): the given string keeps its value (its
+    // flag is folded to 0), the unlisted one computes its default.
+    let src = r#"surface t (string a = concat ("x", "y"); string b = concat ("p", "q");) { Ci = match ("^z", a) + 2 * match ("^p", b); }"#;
+    let c = compile_source("t.sl", src, &CompileOptions::default()).expect("checks");
+    let opts = PassOptions {
+        specialize: vec![("a".into(), Const::Str("zz".into()))],
+        specialize_defaults: true,
+        ..PassOptions::default()
+    };
+    let prog = Program::new(optimize(c.module, &opts)).expect("prepares");
+    let mut ctx = [PointContext::new(globals::<f32>(0, 0, 2), &[] as &[InterpLight])];
+    // (A parameter the shader stores into is not folded: the instance passes the value too.)
+    let mut values: Vec<Const> = prog.module.params.iter().map(|p| p.default.clone()).collect();
+    prog.module.set_param_value(&mut values, 0, Const::Str("zz".into()));
+    let fr = run_batch::<f32, _>(&prog, &values, &mut ctx, &[Mask::splat(true)]);
+    let ci = fr.read(prog.global_loc(Global::Ci).expect("Ci"), 0);
+    let got: Vec<f64> = ci.iter().map(|x| x.lane(0)).collect();
+    release(fr);
+    assert_eq!(got, [3.0, 3.0, 3.0]);
+}
+
+/// `0.5f`, `1.f`: C float suffixes, read as the number with a warning (W0005); other letters
+/// after a number stay an error.
+#[test]
+fn float_suffixes() {
+    let src = "surface t () { Ci = color (0.5f, 1.f, 2e-1F); }";
+    assert_eq!(warning_codes(src), ["W0005", "W0005", "W0005"]);
+    assert!(runs(src).iter().all(|c| *c == [0.5, 1.0, 0.2f32 as f64]), "{:?}", runs(src));
+    assert_eq!(error_codes("surface t () { Ci = 0.5q; }"), ["E0004"]);
+    assert_eq!(error_codes("surface t () { Ci = 0.5ff; }"), ["E0004"]);
+}
+
+/// Gamma with `pow (Ct, 1/2.2)`: colour powers by a float and by a colour, per component.
+#[test]
+fn colour_powers() {
+    let v =
+        runs("surface t () { Ci = pow (color (0.25, 0.5, 4) * Cs, 0.5) + pow (color (2, 3, 4), color (2, 1, 0.5)); }");
+    for c in v {
+        let want = [0.5 + 4.0, 0.5f64.sqrt() + 3.0, 2.0 + 2.0];
+        assert!(c.iter().zip(want).all(|(a, b)| (a - b).abs() < 1e-5), "{c:?}");
+    }
+    assert_eq!(error_codes("surface t () { Ci = pow (P, 2); }"), ["E0202"]);
+}
+
+/// Pixie's and Aqsis' area lights set `N` before `illuminate (P, N, PI/2)` (W0007); an
+/// `illuminance` loop in a light shader is checked but never runs (W0008); PRMan's area-shadow
+/// option `"source"` with its four points is ignored (W0008).
+#[test]
+fn light_shader_leniencies() {
+    let area = r#"light arealight (float intensity = 1; color lightcolor = 1;)
+        {
+            N = normalize (N);
+            illuminate (P, N, PI/2) {
+                Cl = intensity * lightcolor * (N . normalize (L)) / (L . L);
+            }
+        }"#;
+    assert_eq!(warning_codes(area), ["W0007"]);
+    runs(area);
+    let looped = r#"light t (float k = 1;)
+        {
+            color seen = 0;
+            illuminance (P) { seen += 1; }
+            solar () { Cl = k + seen; }
+        }"#;
+    assert_eq!(warning_codes(looped), ["W0008"]);
+    let c = compile_source("t.sl", looped, &CompileOptions::default()).expect("checks");
+    let mut loops = 0;
+    anysl_rsl::ir::walk(&c.module.func.body, &mut |n| {
+        loops += usize::from(matches!(n, anysl_rsl::ir::Node::Illuminance { .. }))
+    });
+    assert_eq!(loops, 0, "the loop is not emitted");
+    let source = r#"light t (string maplist = ""; point p0 = 0, p1 = 0, p2 = 0, p3 = 0;)
+        {
+            illuminate (point (0, 0, 1)) {
+                Cl = 1 - shadow (maplist, Ps, "source", p0, p1, p2, p3, "samples", 4, "bias", 0.01);
+            }
+        }"#;
+    assert_eq!(warning_codes(source), ["W0008"]);
+    runs(source);
+    // Pixie's mirror normalizes I in place (W0007); Ng stays read-only, N in imagers does not
+    // exist, and `illuminance` is still wrong in displacement shaders.
+    let mirror = "surface t () { I = normalize (I); Ci = color (I . I); }";
+    assert_eq!(warning_codes(mirror), ["W0007"]);
+    assert!(runs(mirror).iter().all(|c| (c[0] - 1.0).abs() < 1e-6));
+    assert_eq!(error_codes("surface t () { Ng = N; }"), ["E0220"]);
+    assert_eq!(error_codes("light t () { I = 0; solar () { Cl = 1; } }"), ["E0220"]);
+    assert_eq!(error_codes("displacement t () { illuminance (P) { } }"), ["E0211"]);
+}
+
+/// PRMan 13's `arraylength`: a constant for the fixed-size arrays of RSL here.
+#[test]
+fn array_lengths() {
+    let v = runs(
+        r#"float total (float a[]) { float i, t = 0; for (i = 0; i < arraylength (a); i += 1) t += a[i]; return t; }
+        surface t () { float a[3] = {1, 2, 3}; Ci = color (arraylength (a), total (a), 0); }"#,
+    );
+    assert!(v.iter().all(|c| *c == [3.0, 6.0, 0.0]), "{v:?}");
+    assert_eq!(error_codes("surface t () { Ci = arraylength (s); }"), ["E0202"]);
+}
+
+/// A file of several shaders: `rslc check` checks each (PRMan's `shader` compiles them all),
+/// and an error in one of them is reported as that shader's.
+#[test]
+fn several_shaders_in_one_file() {
+    let dir = std::env::temp_dir().join(format!("anysl-several-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let f = dir.join("pair.sl");
+    std::fs::write(&f, "surface one () { Ci = 1; }\nlight two () { solar () { Cl = 1; } }\n").expect("write");
+    let all = anysl_rsl::compile_file_all(&f, &CompileOptions::default());
+    let names: Vec<String> = all.iter().map(|r| r.as_ref().expect("checks").module.name.clone()).collect();
+    assert_eq!(names, ["one", "two"]);
+    std::fs::write(&f, "surface one () { Ci = 1; }\nsurface two () { Ci = nosuch; }\n").expect("write");
+    let all = anysl_rsl::compile_file_all(&f, &CompileOptions::default());
+    assert!(all[0].is_ok() && all[1].is_err());
+    // One named shader, as before.
+    let one = CompileOptions { shader: Some("one".into()), ..CompileOptions::default() };
+    assert_eq!(anysl_rsl::compile_file_all(&f, &one).len(), 1);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Pixie's shadowarea.sl: `visibility (Ps, P)` is PRMan's `transmission` (W0009); outside a
+/// scene nothing blocks, so the light is unshadowed.
+#[test]
+fn pixie_visibility() {
+    let src = r#"light shadowarea (float intensity = 1; color lightcolor = 1;)
+        {
+            N = normalize (N);
+            illuminate (P, N, PI/2) {
+                Cl = visibility (Ps, P) * intensity * lightcolor * (N . normalize (L)) / (L . L);
+            }
+        }"#;
+    assert_eq!(warning_codes(src), ["W0007", "W0009"]);
+    runs(src);
+    assert_eq!(error_codes("surface t () { Ci = visibility (P); }"), ["E0203"]);
+}
+
+/// The RenderMan Companion's windowhighlight (listing 16.20) reads `Ps` in a surface shader:
+/// read as `P` (W0009). Light-only globals stay errors there.
+#[test]
+fn ps_in_a_surface_shader() {
+    let src = "surface t () { Ci = color (Ps - P) + 0.5; }";
+    assert_eq!(warning_codes(src), ["W0009"]);
+    assert!(runs(src).iter().all(|c| *c == [0.5, 0.5, 0.5]));
+    assert_eq!(error_codes("surface t () { Ci = Cl; }"), ["E0211"]);
+    assert_eq!(error_codes("displacement t () { P = Ps; }"), ["E0211"]);
+}
+
+/// Aqsis' point-based GI examples and PRMan 13: `bake3d` and `texture3d` are checked and answered
+/// as with no point cloud (W0008): 0, outputs unchanged.
+#[test]
+fn point_cloud_calls() {
+    let src = r#"surface t (string cloud = "";)
+        {
+            normal Nn = normalize (N);
+            float ok = bake3d (cloud, "", P, Nn, "_area", area (P), "_radiosity", Cs, "interpolate", 1);
+            color rad = 0.25;
+            float found = texture3d (cloud, P, Nn, "_radiosity", rad);
+            Ci = color (ok, found, comp (rad, 0));
+        }"#;
+    assert_eq!(warning_codes(src), ["W0008", "W0008"]);
+    assert!(runs(src).iter().all(|c| *c == [0.0, 0.0, 0.25]));
+    assert_eq!(error_codes("surface t () { float x = bake3d (\"f\", \"\", P); }"), ["E0203"]);
+    assert_eq!(error_codes("surface t () { float x = texture3d (\"f\", P, N, \"a\", 1); }"), ["E0212"]);
+    assert_eq!(error_codes("surface t () { float x = bake3d (\"f\", \"\", P, N, 3, 1); }"), ["E0204"]);
+}
+
+/// Preprocessor forms of C compilers' cpp: variadic macros (`...`, `__VA_ARGS__`), `#warning`
+/// (a warning, W0010), `#ident` and `#sccs` (ignored).
+#[test]
+fn preprocessor_forms() {
+    let src = r#"#ident "$Id: t.sl 1.1$"
+        #warning "old file"
+        #define DBG(fmt, ...) printf (fmt, __VA_ARGS__)
+        #define SUM(...) max (__VA_ARGS__)
+        #define ONE(x, ...) (x)
+        surface t () { DBG ("%f %f\n", s, t); Ci = SUM (1, 2) + ONE (3) + ONE (4, 5, 6); }"#;
+    assert_eq!(warning_codes(src), ["W0010"]);
+    assert!(runs(src).iter().all(|c| *c == [9.0, 9.0, 9.0]), "{:?}", runs(src));
+    assert_eq!(error_codes("#define F(a, ...., b) a\nsurface t () { }"), ["E0011"]);
+    assert_eq!(error_codes("#define F(a, b, ...) a\nsurface t () { Ci = F (1); }"), ["E0013"]);
+}
+
+/// Advanced RenderMan's lensflare draws uniform random numbers inside an illuminance loop: a
+/// uniform counter assigned there, and a uniform function reading it. One light reaches every
+/// point here, so the counter ends at 2 draws per point, the same on all.
+#[test]
+fn uniform_counter_in_illuminance() {
+    let v = runs(
+        r#"surface t (float seed = 143;)
+        {
+            uniform float nrand = 0;
+            uniform float urand () { extern uniform float nrand, seed; nrand += 1; return cellnoise (nrand, seed); }
+            float sum = 0;
+            illuminance (P, vector (0, 0, 1), PI / 2) {
+                nrand = 0;
+                uniform float a = urand ();
+                sum += a + urand ();
+            }
+            Ci = color (nrand, sum, 0);
+        }"#,
+    );
+    assert!(v.iter().all(|c| c[0] == 2.0 && c[1] == v[0][1]), "{v:?}");
 }

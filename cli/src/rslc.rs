@@ -204,23 +204,30 @@ pub fn run(cmd: &RslcCommand) -> Result<u8, String> {
         RslcCommand::Check { files, sl } => {
             let mut failed = 0;
             for f in files {
-                match anysl_rsl::compile_file(f, &sl.compile_options()) {
-                    Ok(c) => {
-                        if !c.warnings.items.is_empty() {
-                            eprint!("{}", c.warnings.render(&c.sources));
+                // Every shader of the file (PRMan's `shader` compiles them all).
+                let mut errors = 0;
+                for r in anysl_rsl::compile_file_all(f, &sl.compile_options()) {
+                    match r {
+                        Ok(c) => {
+                            if !c.warnings.items.is_empty() {
+                                eprint!("{}", c.warnings.render(&c.sources));
+                            }
+                            println!(
+                                "{}: ok ({} `{}`)",
+                                f.display(),
+                                format!("{:?}", c.module.kind).to_lowercase(),
+                                c.module.name
+                            );
                         }
-                        println!(
-                            "{}: ok ({} `{}`)",
-                            f.display(),
-                            format!("{:?}", c.module.kind).to_lowercase(),
-                            c.module.name
-                        );
+                        Err(e) => {
+                            errors += e.diags.error_count();
+                            eprint!("{e}");
+                        }
                     }
-                    Err(e) => {
-                        failed += 1;
-                        eprint!("{e}");
-                        eprintln!("{}: {} error(s)", f.display(), e.diags.error_count());
-                    }
+                }
+                if errors > 0 {
+                    failed += 1;
+                    eprintln!("{}: {errors} error(s)", f.display());
                 }
             }
             if files.len() > 1 {
@@ -436,7 +443,7 @@ pub fn eval(
             let mut shader = InterpShader::new(prog.clone());
             for (name, c) in &values {
                 if let Some(i) = prog.module.params.iter().position(|p| &p.name == name) {
-                    shader.values[i] = c.clone();
+                    prog.module.set_param_value(&mut shader.values, i, c.clone());
                 }
             }
             if uses_derivatives {

@@ -568,8 +568,23 @@ impl Lexer<'_> {
         self.number_suffix(start, v)
     }
 
-    /// A number immediately followed by letters (`1abc`, `2.5f`) is one malformed token.
+    /// A number immediately followed by letters (`1abc`, `2.5q`) is one malformed token; a C
+    /// float suffix (`0.5f`, `1.F`, `2e-3f`), which PRMan's and BMRT's compilers took, is read as
+    /// the number with a warning.
     fn number_suffix(&mut self, start: usize, v: f64) -> TokenKind {
+        if matches!(self.peek(0), b'f' | b'F') && !is_ident_continue(self.peek(1)) && self.peek(1) != b'.' {
+            self.pos += 1;
+            let text = &self.text[start..self.pos];
+            let d = Diagnostic::warning(
+                codes::FLOAT_SUFFIX,
+                self.span(start, self.pos),
+                format!("C float suffix in `{text}`: read as `{}`", &text[..text.len() - 1]),
+            )
+            .with_label("suffix ignored")
+            .with_note("RSL numbers are all floats; drop the `f`");
+            self.diags.push(d);
+            return TokenKind::Number(v);
+        }
         if is_ident_continue(self.peek(0)) || (self.peek(0) == b'.' && self.peek(1).is_ascii_digit()) {
             while is_ident_continue(self.peek(0)) || self.peek(0) == b'.' {
                 self.pos += 1;

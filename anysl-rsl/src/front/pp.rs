@@ -133,6 +133,9 @@ struct Macro {
     id: u32,
     /// `Some` for function-like macros.
     params: Option<Vec<String>>,
+    /// The last parameter is `...` (named `__VA_ARGS__`): it takes the remaining arguments,
+    /// commas included.
+    variadic: bool,
     body: Vec<Token>,
 }
 
@@ -222,7 +225,7 @@ impl Pp<'_> {
                 // Lexical errors in directive lines of skipped regions, and in the free text of
                 // `#error`/`#pragma`, are not errors.
                 let name = line.first().and_then(Token::word).unwrap_or("");
-                let keep = active && !matches!(name, "error" | "pragma" | "line" | "warning");
+                let keep = active && !matches!(name, "error" | "pragma" | "line" | "warning" | "ident" | "sccs");
                 lexd.flush(end, keep, self.diags);
                 self.directive(t.span, line, &mut conds, file, depth);
                 i = j;
@@ -332,14 +335,20 @@ impl Pp<'_> {
                 let msg = if text.is_empty() { "#error".to_owned() } else { text };
                 self.error(codes::PP_ERROR, span, msg);
             }
-            "pragma" | "line" => {}
+            // GNU cpp's `#ident "…"` / `#sccs "…"` (version strings in old shader sources).
+            "pragma" | "line" | "ident" | "sccs" => {}
+            "warning" => {
+                let text = self.rest_of_line(args);
+                let msg = if text.is_empty() { "#warning".to_owned() } else { text };
+                self.diags.push(Diagnostic::warning(codes::PP_WARNING, span, msg).with_label("#warning"));
+            }
             _ => {
                 // `# 12 "file"` (line markers) are ignored like `#line`.
                 if !matches!(name_tok.kind, TokenKind::Number(_)) {
                     let what = self.sources.snippet(name_tok.span).to_owned();
                     self.error(codes::BAD_DIRECTIVE, span, format!("unknown preprocessor directive `#{what}`"))
                         .notes
-                        .push("known directives: include, define, undef, if, ifdef, ifndef, elif, else, endif, error, pragma, line".into());
+                        .push("known directives: include, define, undef, if, ifdef, ifndef, elif, else, endif, error, warning, pragma, line, ident".into());
                 }
             }
         }
@@ -367,6 +376,7 @@ impl Pp<'_> {
         let name = name.to_owned();
         let mut rest = &args[1..];
         let mut params = None;
+        let mut variadic = false;
         if let Some(lp) = rest.first().filter(|t| t.is(Punct::LParen) && !t.space_before) {
             let mut ps = Vec::new();
             let mut k = 1;
@@ -377,6 +387,18 @@ impl Pp<'_> {
                 k = 2;
             } else {
                 while let Some(t) = rest.get(k) {
+                    // `...` (C99): the remaining arguments, as `__VA_ARGS__`.
+                    if t.is(Punct::Dot)
+                        && rest.get(k + 1).is_some_and(|d| d.is(Punct::Dot))
+                        && rest.get(k + 2).is_some_and(|d| d.is(Punct::Dot))
+                        && rest.get(k + 3).is_some_and(|r| r.is(Punct::RParen))
+                    {
+                        ps.push("__VA_ARGS__".to_owned());
+                        variadic = true;
+                        ok = true;
+                        k += 4;
+                        break;
+                    }
                     let Some(p) = t.word() else { break };
                     ps.push(p.to_owned());
                     match rest.get(k + 1) {
@@ -402,7 +424,7 @@ impl Pp<'_> {
         }
         let id = self.next_macro_id;
         self.next_macro_id = self.next_macro_id.wrapping_add(1);
-        self.macros.insert(name, Macro { id, params, body: rest.to_vec() });
+        self.macros.insert(name, Macro { id, params, variadic, body: rest.to_vec() });
     }
 
     fn include(&mut self, span: Span, args: &[Token], file: FileId, depth: usize) {
@@ -542,7 +564,7 @@ impl Pp<'_> {
                         break;
                     }
                     level -= 1;
-                } else if a.tok.is(Punct::Comma) && level == 0 {
+                } else if a.tok.is(Punct::Comma) && level == 0 && !(mac.variadic && args.len() == params.len()) {
                     args.push(Vec::new());
                     continue;
                 }
@@ -561,6 +583,10 @@ impl Pp<'_> {
             };
             if params.is_empty() && args.len() == 1 && args[0].is_empty() {
                 args.clear();
+            }
+            if mac.variadic && args.len() + 1 == params.len() {
+                // No variable arguments: `__VA_ARGS__` is empty.
+                args.push(Vec::new());
             }
             if args.len() != params.len() {
                 let name = t.tok.word().unwrap_or("");

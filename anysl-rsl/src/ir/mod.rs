@@ -513,6 +513,14 @@ pub struct ParamMeta {
     pub span: Span,
 }
 
+/// The name of the hidden uniform float parameter that says whether the parameter `name`,
+/// whose default is computed when the shader runs (`vector dir = normalize(dPdu)`), keeps its
+/// default: 1 (its default) until the parameter is set, when setters make it 0.
+#[must_use]
+pub fn default_flag_name(name: &str) -> String {
+    format!("__default_{name}")
+}
+
 /// The shader's code.
 #[derive(Clone, Debug, PartialEq, Default)]
 pub struct Function {
@@ -571,6 +579,18 @@ impl Module {
             }
             _ => false,
         })
+    }
+
+    /// Stores `value` as parameter `i` of an instance's `values` (one per [`Module::params`]).
+    /// A parameter whose default is computed when the shader runs also gets its flag
+    /// ([`default_flag_name`]) cleared, so the given value is kept: every setter goes through
+    /// here.
+    pub fn set_param_value(&self, values: &mut [Const], i: usize, value: Const) {
+        let flag = default_flag_name(&self.params[i].name);
+        values[i] = value;
+        if let Some(j) = self.params.iter().position(|p| p.name == flag) {
+            values[j] = Const::Float(0.0);
+        }
     }
 }
 

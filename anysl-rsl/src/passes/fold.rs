@@ -13,6 +13,16 @@ use crate::types::{BaseType, Detail};
 /// Replaces reads of uniform, non-output parameters that the shader never assigns by constants:
 /// the value given in `values`, or the default when `use_defaults` is set.
 pub fn specialize(module: &mut Module, values: &[(String, Const)], use_defaults: bool) {
+    // A given parameter whose default is computed when the shader runs keeps the given value:
+    // its flag is specialized to 0 too.
+    let mut values = values.to_vec();
+    for (n, _) in values.clone() {
+        let flag = crate::ir::default_flag_name(&n);
+        if module.params.iter().any(|p| p.name == flag) && !values.iter().any(|(m, _)| *m == flag) {
+            values.push((flag, Const::Float(0.0)));
+        }
+    }
+    let values = &values[..];
     let func = &mut module.func;
     let mut stored = vec![false; func.slots.len()];
     crate::ir::walk(&func.body, &mut |n| {

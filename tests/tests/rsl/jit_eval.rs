@@ -73,10 +73,11 @@ fn conformance_suite_through_the_jit_eval_entry() {
         let mut values: Vec<Const> = prog.module.params.iter().map(|p| p.default.clone()).collect();
         for (pname, v) in &d.sets {
             if let (Some(i), Some(c)) = (prog.module.params.iter().position(|p| &p.name == pname), param_const(v)) {
-                values[i] = match (&values[i], c) {
+                let c = match (&values[i], c) {
                     (Const::Triple(_), Const::Float(x)) => Const::Triple([x; 3]),
                     (_, c) => c,
                 };
+                prog.module.set_param_value(&mut values, i, c);
             }
         }
         let interp = if derivs {

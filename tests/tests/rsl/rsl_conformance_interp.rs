@@ -109,10 +109,11 @@ fn conformance_suite_through_the_interpreter() {
         for (pname, v) in &d.sets {
             match (prog.module.params.iter().position(|p| &p.name == pname), param_const(v)) {
                 (Some(i), Some(c)) => {
-                    values[i] = match (&values[i], c) {
+                    let c = match (&values[i], c) {
                         (Const::Triple(_), Const::Float(x)) => Const::Triple([x; 3]),
                         (_, c) => c,
-                    }
+                    };
+                    prog.module.set_param_value(&mut values, i, c);
                 }
                 _ => failures.push(format!("{name}: cannot set {pname}")),
             }

@@ -744,7 +744,7 @@ fn set_param_of(m: &Module, values: &mut [Const], name: &str, value: &ParamValue
         expected: param_type(m.params[i].ty),
         got: value.clone(),
     })?;
-    values[i] = c;
+    m.set_param_value(values, i, c);
     Ok(())
 }
 

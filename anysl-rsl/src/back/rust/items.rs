@@ -255,8 +255,16 @@ impl<'a> Gen<'a> {
             } else {
                 format!("{k}::ParamField::from_value(value)")
             };
+            // A parameter with a computed default: setting it clears its flag.
+            let flag =
+                m.params.iter().find(|q| q.name == crate::ir::default_flag_name(&p.name)).map_or(String::new(), |q| {
+                    format!(
+                        " self.{} = {k}::ParamField::from_value(&{k}::ParamValue::Float(0.0)).unwrap_or(self.{0});",
+                        ident(&q.name)
+                    )
+                });
             self.line(&format!(
-                "{:?} => {{ self.{f} = {conv}.ok_or_else(|| {k}::ParamError::Type {{ name: name.to_string(), expected: {k}::ParamType::{pt}, got: value.clone() }})?; Ok(()) }}",
+                "{:?} => {{ self.{f} = {conv}.ok_or_else(|| {k}::ParamError::Type {{ name: name.to_string(), expected: {k}::ParamType::{pt}, got: value.clone() }})?;{flag} Ok(()) }}",
                 p.name
             ));
         }

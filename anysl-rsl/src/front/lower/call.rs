@@ -38,6 +38,24 @@ impl<'a, 'd> Lowerer<'a, 'd> {
         if !user.is_empty() {
             return self.user_call(e, name, &user, args, expected);
         }
+        if name.name == "arraylength" && args.len() == 1 {
+            return self.array_length(&args[0]);
+        }
+        if matches!(name.name.as_str(), "bake3d" | "texture3d") && !builtins::exists(&name.name) {
+            return self.point_cloud_call(e, name, args);
+        }
+        if name.name == "visibility" {
+            // Pixie's `visibility (from, to)`: what PRMan calls `transmission`.
+            self.report(
+                Diagnostic::warning(
+                    codes::OTHER_NAME,
+                    name.span,
+                    "`visibility` (Pixie) is read as `transmission`, its RenderMan name",
+                )
+                .with_label("transmission (from, to)"),
+            );
+            return self.builtin_call(e, "transmission", args, expected);
+        }
         if !builtins::exists(&name.name) {
             let mut d =
                 Diagnostic::error(codes::UNKNOWN_FUNCTION, name.span, format!("unknown function `{}`", name.name))
@@ -57,7 +75,7 @@ impl<'a, 'd> Lowerer<'a, 'd> {
             }
             return None;
         }
-        self.builtin_call(e, name, args, expected)
+        self.builtin_call(e, &name.name, args, expected)
     }
 
     /// Positions that are `output` in every overload of `name` taking `n` arguments.
@@ -96,17 +114,110 @@ impl<'a, 'd> Lowerer<'a, 'd> {
         t
     }
 
-    fn builtin_call(&mut self, e: &'a Expr, name: &'a ast::Ident, args: &'a [Expr], expected: Option<BaseType>) -> R {
-        let outs = self.output_positions(&name.name, args.len());
+    /// `arraylength (a)` (PRMan 13): the length of a fixed-size array, a constant. (Arrays here
+    /// always have a size known to the compiler: an unsized array parameter of a function
+    /// takes the length of the argument it is inlined with.)
+    fn array_length(&mut self, a: &'a Expr) -> R {
+        let v = self.expr(a, None)?;
+        match v.ty.array {
+            Some(n) => Some(self.constant(Const::Float(f64::from(n)), BaseType::Float, a.span)),
+            None => {
+                self.err(
+                    codes::NO_OVERLOAD,
+                    a.span,
+                    format!("`arraylength` takes an array, not {}", an_t(v.ty)),
+                    "not an array",
+                );
+                None
+            }
+        }
+    }
+
+    /// PRMan 13's and Aqsis' point-cloud calls, `bake3d (file, channels, P, N, "name", value,
+    /// …)` and `texture3d (file, P, N, "name", output value, …)`: checked, and answered as
+    /// outside a renderer that keeps point clouds — nothing is written, nothing is found (0),
+    /// the outputs keep their values (W0008).
+    fn point_cloud_call(&mut self, e: &'a Expr, name: &'a ast::Ident, args: &'a [Expr]) -> R {
+        let bake = name.name == "bake3d";
+        let fixed: &[BaseType] = if bake {
+            &[BaseType::String, BaseType::String, BaseType::Point, BaseType::Normal]
+        } else {
+            &[BaseType::String, BaseType::Point, BaseType::Normal]
+        };
+        if args.len() < fixed.len() || (args.len() - fixed.len()) % 2 != 0 {
+            let n = fixed.len();
+            self.report(
+                Diagnostic::error(
+                    codes::ARG_COUNT,
+                    e.span,
+                    format!("`{}` does not take {} arguments", name.name, args.len()),
+                )
+                .with_label(format!("{} given", args.len()))
+                .with_note(format!("it takes {n} and then \"name\", value pairs")),
+            );
+            return None;
+        }
+        let mut ok = true;
+        for (k, a) in args.iter().enumerate() {
+            let want = fixed.get(k).copied().or_else(|| ((k - fixed.len()) % 2 == 0).then_some(BaseType::String));
+            match want {
+                Some(t) => ok &= self.typed(a, t, &format!("argument {} of {}", k + 1, name.name)).is_some(),
+                None if bake => ok &= self.expr(a, None).is_some(),
+                None => ok &= self.place(a, "output").is_some(),
+            }
+        }
+        if !ok {
+            return None;
+        }
+        self.report(
+            Diagnostic::warning(
+                codes::NO_EFFECT,
+                name.span,
+                format!(
+                    "`{}`: point clouds are not kept here; {}",
+                    name.name,
+                    if bake {
+                        "nothing is written (returns 0)"
+                    } else {
+                        "nothing is found (returns 0, outputs unchanged)"
+                    }
+                ),
+            )
+            .with_label("no point cloud"),
+        );
+        Some(self.constant(Const::Float(0.0), BaseType::Float, e.span))
+    }
+
+    fn builtin_call(&mut self, e: &'a Expr, name: &str, args: &'a [Expr], expected: Option<BaseType>) -> R {
+        let outs = self.output_positions(name, args.len());
         let mut vals: Vec<CallArg> = Vec::new();
         let mut failed = false;
         // Spans of the arguments as lowered (channel selection appends two).
         let mut spans: Vec<Span> = args.iter().map(|a| a.span).collect();
         let mut channel: Option<(Val, Span)> = None;
+        // Arguments checked but not passed (PRMan's area-shadow `"source", p0, p1, p2, p3`).
+        let mut dropped: Vec<usize> = Vec::new();
         for (k, a) in args.iter().enumerate() {
+            if dropped.contains(&k) {
+                self.expr(a, Some(BaseType::Point));
+                continue;
+            }
+            if name == "shadow" && k >= 2 && matches!(&a.kind, ExprKind::Str(o) if o == "source") && k + 4 < args.len()
+            {
+                self.report(
+                    Diagnostic::warning(
+                        codes::NO_EFFECT,
+                        a.span,
+                        "the area-shadow option \"source\" (four points, PRMan) is ignored: the map is read as from a point",
+                    )
+                    .with_label("ignored with its four points"),
+                );
+                dropped.extend(k..k + 5);
+                continue;
+            }
             // `texture ("name"[n], …)`, `environment (envname[3], …)`: channel selection on the
             // map name (PRMan, BMRT, Aqsis) — the name, plus a `"firstchannel", n` option.
-            if k == 0 && matches!(name.name.as_str(), "texture" | "environment" | "shadow") {
+            if k == 0 && matches!(name, "texture" | "environment" | "shadow") {
                 if let ExprKind::Index(base, idx) = &a.kind {
                     if let Some(b) = self.expr(base, Some(BaseType::String)) {
                         if b.ty.base == BaseType::String && b.ty.array.is_none() {
@@ -128,7 +239,7 @@ impl<'a, 'd> Lowerer<'a, 'd> {
                 }
             } else {
                 let hint = if matches!(a.kind, ExprKind::Triple(_)) {
-                    self.unique_param(&name.name, args.len(), k).or(expected.filter(|t| t.is_triple()))
+                    self.unique_param(name, args.len(), k).or(expected.filter(|t| t.is_triple()))
                 } else {
                     None
                 };
@@ -141,6 +252,9 @@ impl<'a, 'd> Lowerer<'a, 'd> {
         if failed {
             return None;
         }
+        for &k in dropped.iter().rev() {
+            spans.remove(k);
+        }
         if let Some((i, span)) = channel {
             let opt = self.constant(Const::Str("firstchannel".into()), BaseType::String, span);
             vals.push(CallArg::Value(opt));
@@ -149,10 +263,10 @@ impl<'a, 'd> Lowerer<'a, 'd> {
             spans.push(span);
         }
         let types: Vec<Type> = vals.iter().map(CallArg::ty).collect();
-        let k = match builtins::resolve_expecting(&name.name, &types, expected) {
+        let k = match builtins::resolve_expecting(name, &types, expected) {
             Ok(k) => k,
             Err(err) => {
-                self.no_overload(e, &name.name, args, &types, err, builtins::overloads_of(&name.name).collect());
+                self.no_overload(e, name, args, &types, err, builtins::overloads_of(name).collect());
                 return None;
             }
         };
@@ -177,7 +291,7 @@ impl<'a, 'd> Lowerer<'a, 'd> {
                 CallArg::Place(pl) => {
                     if pl.index.is_some() {
                         // An array element: written through a temporary, copied back below.
-                        let t = self.new_slot(&format!("{}.out", name.name), pl.ty, SlotKind::Local, spans[i]);
+                        let t = self.new_slot(&format!("{name}.out"), pl.ty, SlotKind::Local, spans[i]);
                         outputs.push(Some(t));
                         copy_out.push((t, pl, spans[i]));
                     } else {
@@ -197,7 +311,7 @@ impl<'a, 'd> Lowerer<'a, 'd> {
                     Diagnostic::error(
                         codes::VARYING_TO_UNIFORM,
                         span,
-                        format!("`{}` writes a varying value into the uniform variable `{n}`", name.name),
+                        format!("`{name}` writes a varying value into the uniform variable `{n}`"),
                     )
                     .with_label("uniform output")
                     .with_note(format!("declare `{n}` varying")),

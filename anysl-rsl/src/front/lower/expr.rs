@@ -244,6 +244,21 @@ impl<'a, 'd> Lowerer<'a, 'd> {
                 }
             },
             Some(Found::Pi) => Some(self.constant(Const::Float(std::f64::consts::PI), BaseType::Float, span)),
+            Some(Found::Global(Global::Ps)) if matches!(self.kind, ShaderType::Surface | ShaderType::Volume) => {
+                // The RenderMan Companion's windowhighlight reads `Ps` in a surface shader: the
+                // point being shaded, which a surface shader calls P.
+                self.report(
+                    Diagnostic::warning(
+                        codes::OTHER_NAME,
+                        span,
+                        format!("`Ps` does not exist in a {} shader: read as `P`", self.kind.keyword()),
+                    )
+                    .with_label("read as P")
+                    .with_note("Ps is the surface point as a light shader sees it"),
+                );
+                let s = self.global_slot(Global::P);
+                Some(self.inst(Op::Load(s), Vec::new(), Global::P.ty(), false, span))
+            }
             Some(Found::Global(g)) => {
                 if !self.global_readable(g, span) {
                     return None;

@@ -16,9 +16,15 @@
 //!   detail, so each call is checked with the actual argument details. Recursion is an error.
 //!   Functions that are never called are checked once with their declared types.
 //! * **Uniform/varying.** Parameters default to uniform, locals to varying. A varying value
-//!   stored into a uniform variable is [`codes::VARYING_TO_UNIFORM`]; storing into a uniform
-//!   variable declared outside the innermost varying `if`/loop/light loop (or after a varying
-//!   `break`/`return`) is [`codes::UNIFORM_IN_VARYING_FLOW`].
+//!   stored into a uniform variable is [`codes::VARYING_TO_UNIFORM`]. A uniform local or
+//!   parameter stored into under varying control flow (inside a varying `if`/loop/light loop
+//!   declared outside it, or after a varying `break`/`return`) is made varying, with the
+//!   warning [`codes::PROMOTED_TO_VARYING`]: the shader is lowered again with it varying, as
+//!   PRMan, BMRT and Aqsis compiled such shaders; so is a parameter that is uniform only by
+//!   default (no `uniform` written) when it is assigned a varying value. A uniform *output
+//!   argument* stored into under varying flow stays [`codes::UNIFORM_IN_VARYING_FLOW`] (the
+//!   caller's variable is uniform), and a declared `uniform` assigned a varying value stays
+//!   [`codes::VARYING_TO_UNIFORM`].
 //! * **Return type by context.** Every expression is lowered with an *expected* base type (the
 //!   declaration, assignment or cast target, passed down through arithmetic and `?:`); it picks
 //!   among built-in overloads that differ only in their return type (`color noise(P)`) and
@@ -28,7 +34,11 @@
 //!   point-like default in a named space keeps the space in [`ParamMeta::space`]; a colour in a
 //!   named colour space is converted to RGB at compile time. The arithmetic and the built-ins
 //!   are computed by the constant folder ([`passes::fold`](crate::passes::fold)), the one
-//!   constant evaluator of the compiler.
+//!   constant evaluator of the compiler. A default that is not a constant (`normalize(dPdu)`,
+//!   `Cs`) is computed at the start of the body, when the hidden uniform parameter
+//!   [`ir::default_flag_name`] (1 by default, cleared by the setters) says the parameter kept
+//!   its default ([`codes::COMPUTED_DEFAULT`]); such a parameter is made varying (strings stay
+//!   uniform).
 //!
 //! # Files
 //!
@@ -168,6 +178,9 @@ struct Lowerer<'a, 'd> {
     uniform_target: bool,
     /// Declarations (name spans) of function-local `uniform` variables lowered as varying.
     promote: HashSet<Span>,
+    /// Shader parameters uniform only by default (no `uniform` written): slot → name span.
+    /// Assigned a varying value, such a parameter is made varying (Aqsis, BMRT).
+    implicit_uniform: HashMap<SlotId, Span>,
     /// Function-local `uniform` variables found assigned under varying control flow.
     want_promote: HashSet<Span>,
 }
@@ -271,6 +284,7 @@ impl<'a, 'd> Lowerer<'a, 'd> {
             ret_checked: HashSet::new(),
             uniform_target: false,
             promote: HashSet::new(),
+            implicit_uniform: HashMap::new(),
             want_promote: HashSet::new(),
         }
     }
@@ -352,8 +366,9 @@ impl<'a, 'd> Lowerer<'a, 'd> {
         self.push_scope(false);
         let mut params = Vec::new();
         let mut env: HashMap<String, (Const, BaseType)> = HashMap::new();
+        // Parameters whose default is computed at run time: (parameter, its slot).
+        let mut computed: Vec<(&'a ast::Param, SlotId)> = Vec::new();
         for (i, p) in sh.params.iter().enumerate() {
-            let detail = p.ty.detail.unwrap_or(Detail::Uniform);
             let array = match p.array {
                 None => None,
                 Some(Some(n)) => Some(n),
@@ -362,17 +377,44 @@ impl<'a, 'd> Lowerer<'a, 'd> {
                     Some(0)
                 }
             };
+            let declared = p.ty.detail.unwrap_or(Detail::Uniform);
+            let mut space = None;
+            let evaluated = p.default.as_ref().map(|e| {
+                let mut ce = ConstEval { env: &env, diags: Vec::new() };
+                let r = ce.eval_to(e, Type { base: p.ty.base, detail: declared, array }, &mut space);
+                (r, ce.diags)
+            });
+            // A default that is an expression of the shading point or a call the compiler
+            // cannot fold (`normalize(dPdu)`, `Cs`): PRMan and BMRT evaluate it when the shader
+            // runs, so it is computed at the start of the body unless the parameter is given.
+            let runtime = array.is_none()
+                && p.ty.base != BaseType::Void
+                && matches!(&evaluated, Some((None, ds)) if !ds.is_empty() && ds.iter().all(|d| d.code == codes::NON_CONSTANT_DEFAULT));
+            let mut detail = declared;
+            if runtime && detail == Detail::Uniform && p.ty.base != BaseType::String {
+                detail = Detail::Varying;
+            }
+            if detail == Detail::Uniform && self.promote.contains(&p.name.span) {
+                detail = Detail::Varying;
+                self.warn_promoted(p.name.span, &p.name.name, "parameter");
+            }
             let ty = Type { base: p.ty.base, detail, array };
             if p.ty.base == BaseType::Void {
                 self.err(codes::TYPE_MISMATCH, p.ty.span, "a parameter cannot be void", "void parameter");
             }
             let slot = self.new_slot(&p.name.name, ty, SlotKind::Param(i as u32), p.span);
-            let mut space = None;
-            let default = match &p.default {
-                Some(e) => {
-                    let mut ce = ConstEval { env: &env, diags: Vec::new() };
-                    let r = ce.eval_to(e, ty, &mut space);
-                    for d in ce.diags {
+            if p.ty.detail.is_none() && detail == Detail::Uniform {
+                self.implicit_uniform.insert(slot, p.name.span);
+            }
+            let default = match evaluated {
+                Some(_) if runtime => {
+                    self.warn_computed_default(p, declared != detail);
+                    computed.push((p, slot));
+                    space = None;
+                    zero_const(ty)
+                }
+                Some((r, ds)) => {
+                    for d in ds {
                         self.report(d);
                     }
                     r.unwrap_or_else(|| zero_const(ty))
@@ -387,7 +429,9 @@ impl<'a, 'd> Lowerer<'a, 'd> {
                     zero_const(ty)
                 }
             };
-            env.insert(p.name.name.clone(), (default.clone(), p.ty.base));
+            if !runtime {
+                env.insert(p.name.name.clone(), (default.clone(), p.ty.base));
+            }
             params.push(ParamMeta {
                 name: p.name.name.clone(),
                 ty,
@@ -402,6 +446,24 @@ impl<'a, 'd> Lowerer<'a, 'd> {
                 VarInfo { binding: Binding::Slot(slot), span: p.name.span, read_only: false, flow: 0 },
             );
         }
+        // One hidden uniform flag per computed default, after the declared parameters: 1 while
+        // the parameter keeps its default (setting the parameter clears it).
+        let mut flags = Vec::new();
+        for (p, _) in &computed {
+            let ty = Type::uniform(BaseType::Float);
+            let name = ir::default_flag_name(&p.name.name);
+            let slot = self.new_slot(&name, ty, SlotKind::Param(params.len() as u32), p.span);
+            params.push(ParamMeta {
+                name,
+                ty,
+                default: Const::Float(1.0),
+                output: false,
+                slot,
+                span: p.span,
+                space: None,
+            });
+            flags.push(slot);
+        }
         self.frames.push(FrameCtx {
             func: None,
             ret_slot: None,
@@ -409,6 +471,21 @@ impl<'a, 'd> Lowerer<'a, 'd> {
             varying_exit: false,
             flow_at_entry: 0,
         });
+        // The computed defaults, in parameter order (a default may read earlier parameters).
+        for ((p, slot), flag) in computed.iter().zip(flags) {
+            let Some(e) = &p.default else { continue };
+            let f = self.inst(Op::Load(flag), Vec::new(), Type::uniform(BaseType::Float), false, e.span);
+            let cond = self.inst(Op::Convert, vec![f.v], Type::uniform(BaseType::Float), true, e.span);
+            self.push_block();
+            let ty = self.slot_ty(*slot);
+            if let Some(v) = self.expr(e, Some(ty.base)) {
+                if let Some(v) = self.check_store(v, ty, e.span, &p.name.name, p.name.span) {
+                    self.store(&place::Place { slot: *slot, index: None, ty }, v);
+                }
+            }
+            let then = self.pop_block();
+            self.emit(Node::If { cond: cond.v, then, otherwise: Vec::new() });
+        }
         self.push_scope(false);
         for s in &sh.body.stmts {
             self.stmt(s);
@@ -432,6 +509,25 @@ impl<'a, 'd> Lowerer<'a, 'd> {
             params,
             func: std::mem::take(&mut self.func),
         })
+    }
+}
+
+impl Lowerer<'_, '_> {
+    /// W0006: the default of `p` is computed when the shader runs; `made_varying` when the
+    /// parameter, uniform as declared, is made varying to hold it.
+    fn warn_computed_default(&mut self, p: &ast::Param, made_varying: bool) {
+        let Some(e) = &p.default else { return };
+        let mut d = Diagnostic::warning(
+            codes::COMPUTED_DEFAULT,
+            e.span,
+            format!("the default of `{}` is not a constant: it is computed when the shader runs", p.name.name),
+        )
+        .with_label("computed at each shading point")
+        .with_note("as PRMan and BMRT do: a value given for the parameter replaces it");
+        if made_varying {
+            d = d.with_note(format!("`{}` is made varying to hold it", p.name.name));
+        }
+        self.report(d);
     }
 }
 

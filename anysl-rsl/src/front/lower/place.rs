@@ -6,7 +6,7 @@ use super::typing::{binary_type, binop, global_access};
 use super::{an_t, type_name, Lowerer, Val, R};
 use crate::builtins::{self, Builtin, OVERLOADS};
 use crate::diag::{codes, Diagnostic};
-use crate::front::ast::{AssignOp, BinaryOp, Expr, ExprKind};
+use crate::front::ast::{AssignOp, BinaryOp, Expr, ExprKind, ShaderType};
 use crate::ir::{Global, Node, Op, SlotId};
 use crate::span::Span;
 use crate::types::{BaseType, Detail, Type};
@@ -42,12 +42,9 @@ impl<'a, 'd> Lowerer<'a, 'd> {
                 Binding::Slot(s) if !v.read_only => {
                     let decl_flow = v.flow;
                     let ty = self.slot_ty(s);
-                    if ty.detail == Detail::Uniform
-                        && self.flow() > decl_flow
-                        && self.frames.last().is_some_and(|f| f.func.is_some())
-                        && !self.promote.contains(&v.span)
-                    {
-                        // A local of a function (inlined here): lowered again as varying.
+                    if ty.detail == Detail::Uniform && self.flow() > decl_flow && !self.promote.contains(&v.span) {
+                        // A local or a shader parameter: lowered again as varying (a warning at
+                        // its declaration says so).
                         self.want_promote.insert(v.span);
                     } else if ty.detail == Detail::Uniform && self.flow() > decl_flow {
                         self.report(
@@ -78,7 +75,29 @@ impl<'a, 'd> Lowerer<'a, 'd> {
             },
             Some(Found::Global(g)) => {
                 let (_, write) = global_access(self.kind, g);
-                if !write {
+                // Pixie's and Aqsis' area lights set N (the light's own normal) before
+                // `illuminate (P, N, PI/2)`; Pixie's mirror normalizes I in place. Only this
+                // shader sees the new value (no renderer reads them back).
+                let local_write = match g {
+                    Global::N => self.kind == ShaderType::Light,
+                    Global::I => !matches!(self.kind, ShaderType::Light | ShaderType::Imager),
+                    _ => false,
+                };
+                if !write && local_write {
+                    self.report(
+                        Diagnostic::warning(
+                            codes::WRITTEN_GLOBAL,
+                            e.span,
+                            format!(
+                                "assignment to {}, read-only in a {} shader by the RenderMan spec: accepted as Pixie and Aqsis do",
+                                g.name(),
+                                self.kind.keyword()
+                            ),
+                        )
+                        .with_label(format!("{} set here", g.name()))
+                        .with_note(format!("the new {} is seen by the rest of this shader only", g.name())),
+                    );
+                } else if !write {
                     let d = Diagnostic::error(
                         codes::READ_ONLY,
                         e.span,
@@ -228,6 +247,14 @@ impl<'a, 'd> Lowerer<'a, 'd> {
                 self.inst(Op::Binary(binop(bop)), vec![cur.v, r.v], Type::new(base, d), false, e.span)
             }
         };
+        if value.ty.detail == Detail::Varying && place.ty.detail == Detail::Uniform && !value.is_bool {
+            if let Some(&decl) = self.implicit_uniform.get(&place.slot) {
+                // A parameter uniform only by default, assigned a varying value: lowered again
+                // as varying (warning W0004 at its declaration).
+                self.want_promote.insert(decl);
+                return None;
+            }
+        }
         let value = self.check_store(value, place.ty, rhs.span, &name, lhs.span)?;
         if let Some(i) = place.index {
             if i.ty.detail == Detail::Varying && place.ty.detail == Detail::Uniform {

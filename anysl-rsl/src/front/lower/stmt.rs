@@ -100,7 +100,17 @@ impl<'a, 'd> Lowerer<'a, 'd> {
             }
             StmtKind::Return(e) => self.ret(s, e.as_ref()),
             StmtKind::Illuminance { category, position, cone, body } => {
-                if !matches!(self.kind, ShaderType::Surface | ShaderType::Volume) {
+                if self.kind == ShaderType::Light {
+                    self.report(
+                        Diagnostic::warning(
+                            codes::NO_EFFECT,
+                            s.span,
+                            "`illuminance` in a light shader: accepted, but its body never runs",
+                        )
+                        .with_label("light loop here")
+                        .with_note("a light shader runs inside another shader's light loop and sees no lights itself"),
+                    );
+                } else if !matches!(self.kind, ShaderType::Surface | ShaderType::Volume) {
                     self.report(
                         Diagnostic::error(
                             codes::WRONG_CONTEXT,
@@ -121,8 +131,10 @@ impl<'a, 'd> Lowerer<'a, 'd> {
                         self.typed(b, BaseType::Float, "the illuminance angle"),
                     )
                 });
+                // The body runs once per light for the points it reaches. As in PRMan, uniform
+                // variables may be assigned there (a uniform statement runs once per light): the
+                // Advanced RenderMan lensflare counts its random draws in a uniform inside it.
                 self.light_loops += 1;
-                self.vflow += 1;
                 if let Some(f) = self.frame() {
                     f.loops.push(LoopCtx { varying: false });
                 }
@@ -130,7 +142,6 @@ impl<'a, 'd> Lowerer<'a, 'd> {
                 if let Some(f) = self.frame() {
                     f.loops.pop();
                 }
-                self.vflow -= 1;
                 self.light_loops -= 1;
                 let Some(pos) = pos else { return };
                 let cone = match cone {
@@ -138,7 +149,8 @@ impl<'a, 'd> Lowerer<'a, 'd> {
                     Some(_) => return,
                     None => None,
                 };
-                if category.is_some() && cat.is_none() {
+                if (category.is_some() && cat.is_none()) || self.kind == ShaderType::Light {
+                    // (In a light shader the loop was checked but is not emitted: no lights.)
                     return;
                 }
                 self.emit(Node::Illuminance { category: cat.map(|c| c.v), position: pos.v, cone, body });
@@ -385,18 +397,7 @@ impl<'a, 'd> Lowerer<'a, 'd> {
             let mut ty = Type { base: ts.base, detail: ts.detail.unwrap_or(Detail::Varying), array: d.array };
             if ty.detail == Detail::Uniform && self.promote.contains(&d.name.span) {
                 ty.detail = Detail::Varying;
-                self.report(
-                    Diagnostic::warning(
-                        codes::PROMOTED_TO_VARYING,
-                        d.name.span,
-                        format!(
-                            "the uniform variable `{}` is assigned under varying control flow; it is made varying",
-                            d.name.name
-                        ),
-                    )
-                    .with_label("made varying")
-                    .with_note("as BMRT and Aqsis do for function locals; declare it varying to silence this"),
-                );
+                self.warn_promoted(d.name.span, &d.name.name, "variable");
             }
             if d.array == Some(0) {
                 self.err(codes::BAD_INDEX, d.span, "an array needs at least one element", "size 0");
@@ -516,5 +517,24 @@ impl<'a, 'd> Lowerer<'a, 'd> {
             return Some(v);
         }
         self.convert(v, to.base, span)
+    }
+}
+
+impl Lowerer<'_, '_> {
+    /// W0004: the uniform `what` `name` (declared at `span`) is assigned under varying control
+    /// flow (or, for a parameter uniform only by default, a varying value), so it is lowered as
+    /// varying — what PRMan, BMRT and Aqsis did with such shaders.
+    pub(super) fn warn_promoted(&mut self, span: Span, name: &str, what: &str) {
+        self.report(
+            Diagnostic::warning(
+                codes::PROMOTED_TO_VARYING,
+                span,
+                format!(
+                    "the uniform {what} `{name}` is assigned a varying value or under varying control flow; it is made varying"
+                ),
+            )
+            .with_label("made varying")
+            .with_note("points may now hold different values, as the shader meant; declare it varying to silence this"),
+        );
     }
 }
