@@ -905,30 +905,35 @@ impl LightShader for InterpShader {
     }
 }
 
+/// Globals with `P` = `p` and every other one zero (the globals of a light shader's run and
+/// of an imager's pixel before its own are set).
+pub(super) fn globals_at<F: ShadingFloat>(p: Vec3<F>) -> Globals<F> {
+    let zero = F::c(0.0);
+    Globals {
+        P: p,
+        N: Vec3::zero(),
+        Ng: Vec3::zero(),
+        I: Vec3::zero(),
+        E: Vec3::zero(),
+        s: zero,
+        t: zero,
+        u: zero,
+        v: zero,
+        du: zero,
+        dv: zero,
+        dPdu: Vec3::zero(),
+        dPdv: Vec3::zero(),
+        Cs: Color::zero(),
+        Os: Color::zero(),
+    }
+}
+
 impl InterpShader {
     /// [`LightShader::light`] with the named spaces `spaces` (a light placed in a scene sees
     /// its own "shader" space, the space current where it was declared).
     pub fn light_in<F: ShadingFloat>(&self, e: &mut Exec<F>, ps: Vec3<F>, spaces: &Spaces) -> LightOutput<F> {
         let p = &*self.program;
-        let zero = F::c(0.0);
-        let g = Globals {
-            P: ps,
-            N: Vec3::zero(),
-            Ng: Vec3::zero(),
-            I: Vec3::zero(),
-            E: Vec3::zero(),
-            s: zero,
-            t: zero,
-            u: zero,
-            v: zero,
-            du: zero,
-            dv: zero,
-            dPdu: Vec3::zero(),
-            dPdv: Vec3::zero(),
-            Cs: Color::zero(),
-            Os: Color::zero(),
-        };
-        let mut ctx = LightCtx { g, spaces };
+        let mut ctx = LightCtx { g: globals_at(ps), spaces };
         let mut fr = take_frame::<F>(p, 1);
         for (i, loc) in p.params.iter().enumerate() {
             if let Some(c) = self.values.get(i) {

@@ -1,7 +1,7 @@
 //! Volume and imager shaders run by the interpreter: programs that start with `Ci`, `Oi` (and,
 //! for imagers, `alpha`) holding what arrives instead of zero.
 
-use super::exec::{release, run_erased_with, Incoming, InterpShader, LightCtx};
+use super::exec::{globals_at, release, run_erased_with, Incoming, InterpShader, LightCtx};
 use super::frame::{Frame, Loc};
 use super::prepare::Program;
 use crate::ir::Global;
@@ -13,28 +13,6 @@ fn read_color<F: ShadingFloat>(fr: &Frame<F>, p: &Program, g: Global, k: usize) 
     match p.global_loc(g) {
         Some(Loc::Num { off, .. }) => Some(fr.color(off, k)),
         _ => None,
-    }
-}
-
-/// Globals with `P` = `p` and every other one zero.
-fn globals_at<F: ShadingFloat>(p: Vec3<F>) -> Globals<F> {
-    let zero = F::c(0.0);
-    Globals {
-        P: p,
-        N: Vec3::zero(),
-        Ng: Vec3::zero(),
-        I: Vec3::zero(),
-        E: Vec3::zero(),
-        s: zero,
-        t: zero,
-        u: zero,
-        v: zero,
-        du: zero,
-        dv: zero,
-        dPdu: Vec3::zero(),
-        dPdv: Vec3::zero(),
-        Cs: Color::zero(),
-        Os: Color::zero(),
     }
 }
 
