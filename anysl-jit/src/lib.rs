@@ -148,9 +148,36 @@ impl Variant {
         }
     }
 
+    /// The address compiled code of this variant calls for runtime function `kind` with
+    /// `aux` ([`rt::rt_addr`] of the variant's float type). Not generic, and never inlined,
+    /// so callers in other crates (tests, tools) link to this crate's copies of the runtime
+    /// functions instead of compiling their own.
+    #[must_use]
+    #[inline(never)]
+    pub fn rt_addr(self, kind: rt::RtKind, aux: u32) -> usize {
+        self.rt_resolver()(kind, aux)
+    }
+
+    /// The general runtime function of `kind` for this variant's float type (the entry of
+    /// [`rt::rt_table`]: the one that dispatches on `aux` at run time), as an address.
+    #[must_use]
+    #[inline(never)]
+    pub fn rt_general_addr(self, kind: rt::RtKind) -> usize {
+        let table = match self {
+            Self::F32 => rt::rt_table::<f32>(),
+            Self::X4 => rt::rt_table::<F32x4>(),
+            Self::X8 | Self::X8x4 => rt::rt_table::<F32x8>(),
+            Self::X16 | Self::X16x2 => rt::rt_table::<F32x16>(),
+            Self::DualF32 => rt::rt_table::<Dual<f32>>(),
+            Self::DualX8 => rt::rt_table::<Dual<F32x8>>(),
+        };
+        table[kind as usize] as usize
+    }
+
     /// Where compiled code of this variant calls for a runtime function ([`rt::rt_addr`]).
     /// Several packets per call use the function of one packet, called once per packet (so
     /// the runtime library is compiled for no more float types).
+    #[inline(never)]
     fn rt_resolver(self) -> fn(rt::RtKind, u32) -> usize {
         match self {
             Self::X8x4 => rt::rt_addr::<F32x8>,

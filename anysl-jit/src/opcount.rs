@@ -324,6 +324,3 @@ pub fn instrument(cx: &Context, m: &Module<'_>, counters: &OpCounters, unit: u32
         }
     }
 }
-
-#[cfg(test)]
-mod tests;

@@ -43,9 +43,7 @@ impl Image {
     /// # Errors
     /// When the file cannot be written; the message names the path.
     pub fn save_png(&self, path: impl AsRef<Path>) -> Result<(), String> {
-        let path = path.as_ref();
-        image::save_buffer(path, &self.to_srgb8(), self.width, self.height, image::ExtendedColorType::Rgb8)
-            .map_err(|e| format!("{}: cannot write PNG: {e}", path.display()))
+        write_rgb8(path.as_ref(), &self.to_srgb8(), self.width, self.height)
     }
 
     /// Peak signal-to-noise ratio in dB against `other`, on linear values clamped to [0, 1]
@@ -158,4 +156,30 @@ mod tests {
         assert!((a.max_abs_diff(&b) - 0.1).abs() < 1e-7);
         assert!((b.mean()[1] - 0.1).abs() < 1e-7);
     }
+}
+
+/// Writes 8-bit RGB pixels (row-major, `3 * width * height` bytes) to `path`, in the format its
+/// extension names (PNG for `.png`).
+///
+/// Not generic, and never inlined: the `image` crate's encoders are compiled once, in this
+/// crate, instead of in every crate that writes a picture (test binaries, the CLI).
+///
+/// # Errors
+/// When the file cannot be written; the message names the path.
+#[inline(never)]
+pub fn write_rgb8(path: &Path, rgb: &[u8], width: u32, height: u32) -> Result<(), String> {
+    image::save_buffer(path, rgb, width, height, image::ExtendedColorType::Rgb8)
+        .map_err(|e| format!("{}: cannot write the image: {e}", path.display()))
+}
+
+/// Reads an image file as 8-bit RGB: `(width, height, pixels)` with the pixels row-major,
+/// 3 bytes each. Not generic, and never inlined (the decoders are compiled once, here).
+///
+/// # Errors
+/// When the file cannot be read or decoded; the message names the path.
+#[inline(never)]
+pub fn read_rgb8(path: &Path) -> Result<(u32, u32, Vec<u8>), String> {
+    let img = image::open(path).map_err(|e| format!("{}: {e}", path.display()))?.to_rgb8();
+    let (w, h) = img.dimensions();
+    Ok((w, h, img.into_raw()))
 }

@@ -64,7 +64,7 @@ pub mod shading;
 
 pub use accel::{Accel, Hit};
 pub use camera::{Camera, CameraSpec, PrimaryRay, Projection, RayDifferential};
-pub use image::Image;
+pub use image::{read_rgb8, write_rgb8, Image};
 pub use mesh::{Mesh, ObjError};
 pub use render::packet::{
     packet_shape, render_packet, render_packet_kernel, render_packet_split, render_packet_stats, render_packet_with,

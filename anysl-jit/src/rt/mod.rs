@@ -53,8 +53,6 @@ mod host;
 mod math;
 mod noise;
 mod spline;
-#[cfg(test)]
-mod tests;
 
 pub use host::{
     cast, Host, HostCtx, HostTable, KeptDiffuse, HOST_CTX_LIGHTS, HOST_CTX_N_LIGHTS, SPACE_BETWEEN, SPACE_FROM_CURRENT,
@@ -65,7 +63,7 @@ use math::{rt_bin_k, rt_geo_k, rt_un_k};
 pub use noise::rt_noise;
 use noise::rt_noise_k;
 use spline::rt_spline_k;
-pub use spline::{rt_spline, MAX_KNOTS};
+pub use spline::{rt_spline, BASES as SPLINE_BASIS_BY_INDEX, MAX_KNOTS};
 
 /// Reads consecutive values from a callback's input buffer.
 struct In<F> {

@@ -35,7 +35,7 @@ pub(super) unsafe extern "C" fn rt_spline_k<F: JitFloat, const BW: u32>(
 }
 
 /// The bases of [`SPLINE_BASES`](super::SPLINE_BASES), by index.
-pub(super) const BASES: [SplineBasis; 6] = [
+pub const BASES: [SplineBasis; 6] = [
     SplineBasis::CATMULL_ROM,
     SplineBasis::BEZIER,
     SplineBasis::BSPLINE,

@@ -5,7 +5,7 @@
 
 use anysl_core::stdlib::{fresnel, refract};
 use anysl_core::{Exec, Globals, PointContext, ShadingFloat, SurfaceShader, Vec3};
-use anysl_jit::rt::{rt_addr, Geo, RtKind};
+use anysl_jit::rt::{Geo, RtKind};
 use anysl_jit::{JitOptions, JitShader, Variant};
 use anysl_shaders::Light;
 use anysl_simd::{F32x16, F32x4, F32x8};
@@ -127,11 +127,7 @@ fn glass_calls_no_library_fresnel() {
     let dir = PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../shaders/rsl"));
     let jit = JitShader::from_file(&dir.join("glass.sl"), &[dir.join("include")], JitOptions::default()).unwrap();
     for v in [Variant::X4, Variant::X8, Variant::X16] {
-        let a = |aux| match v {
-            Variant::X4 => rt_addr::<F32x4>(RtKind::Geo, aux),
-            Variant::X16 => rt_addr::<F32x16>(RtKind::Geo, aux),
-            _ => rt_addr::<F32x8>(RtKind::Geo, aux),
-        };
+        let a = |aux| v.rt_addr(RtKind::Geo, aux);
         let ir = anysl_jit::compile_with(&jit.module, &jit.values, v, &jit.opts, true).unwrap().llvm_ir.unwrap();
         for (name, aux) in [("fresnel", Geo::Fresnel as u32), ("refract", Geo::Refract as u32)] {
             assert!(!ir.contains(&format!("i64 {} to", a(aux))), "{v:?}: glass calls the library's {name}");

@@ -3,7 +3,7 @@
 //! no longer calls the library for them.
 
 use anysl_core::{Exec, Globals, PointContext, ShadingFloat, SurfaceShader};
-use anysl_jit::rt::{rt_addr, RtKind, Un};
+use anysl_jit::rt::{RtKind, Un};
 use anysl_jit::{JitOptions, JitShader, Variant};
 use anysl_shaders::Light;
 use anysl_simd::{F32x16, F32x4, F32x8};
@@ -171,11 +171,7 @@ fn starball_calls_no_library_transcendentals() {
     let dir = PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../shaders/rsl"));
     let jit = JitShader::from_file(&dir.join("starball.sl"), &[dir.join("include")], JitOptions::default()).unwrap();
     let addrs = |v: Variant| -> Vec<(&str, usize)> {
-        let a = |k, aux| match v {
-            Variant::X4 => rt_addr::<F32x4>(k, aux),
-            Variant::X16 => rt_addr::<F32x16>(k, aux),
-            _ => rt_addr::<F32x8>(k, aux),
-        };
+        let a = |k, aux| v.rt_addr(k, aux);
         vec![
             ("sin", a(RtKind::Un, Un::Sin as u32)),
             ("cos", a(RtKind::Un, Un::Cos as u32)),

@@ -3,10 +3,13 @@
 //!
 //! `cargo test -p anysl-jit --test suite points::` runs one module.
 
+mod check;
 mod displacement;
 mod inline_geometry;
 mod inline_math;
 mod light_loops;
+mod opcount;
 mod points;
+mod runtime;
 mod smoke;
 mod spaces;

@@ -3,7 +3,7 @@
 //! the scalar picture is what it was (golden images `tests/data/golden/scene-*.png`;
 //! `ANYSL_BLESS=1` rewrites them, a mismatch writes `-actual.png` beside them).
 
-use anysl_renderers::{render_packet, render_pbrt, render_scalar, Integrator, RenderOptions};
+use anysl_renderers::{read_rgb8, render_packet, render_pbrt, render_scalar, write_rgb8, Integrator, RenderOptions};
 use anysl_scene::build::{BuildOptions, Film, SceneBuilder};
 use anysl_scene::film::quantized;
 use anysl_scene::render::{frame_scene, Surfaces};
@@ -32,22 +32,19 @@ fn check_golden(name: &str, film: &Film, pixels: &[[f32; 4]]) -> Result<(), Stri
     let rgb: Vec<u8> =
         quantized(film, pixels, 3).into_iter().map(|v| (f32::from(v) * 255.0 / one).round().min(255.0) as u8).collect();
     if std::env::var("ANYSL_BLESS").is_ok_and(|v| v == "1") {
-        image::save_buffer(&path, &rgb, w, h, image::ExtendedColorType::Rgb8).map_err(|e| e.to_string())?;
+        write_rgb8(&path, &rgb, w, h)?;
         eprintln!("blessed {}", path.display());
         return Ok(());
     }
-    let golden = image::open(&path)
-        .map_err(|e| format!("{}: {e} (run with ANYSL_BLESS=1 to create it)", path.display()))?
-        .to_rgb8();
-    let same_size = golden.dimensions() == (w, h);
+    let (gw, gh, golden) = read_rgb8(&path).map_err(|e| format!("{e} (run with ANYSL_BLESS=1 to create it)"))?;
+    let same_size = (gw, gh) == (w, h);
     let max = if same_size {
-        golden.as_raw().iter().zip(&rgb).map(|(a, b)| u16::from(a.abs_diff(*b))).max().unwrap_or(0)
+        golden.iter().zip(&rgb).map(|(a, b)| u16::from(a.abs_diff(*b))).max().unwrap_or(0)
     } else {
         255
     };
     let mse: f64 = if same_size {
-        golden.as_raw().iter().zip(&rgb).map(|(a, b)| (f64::from(*a) - f64::from(*b)).powi(2)).sum::<f64>()
-            / rgb.len() as f64
+        golden.iter().zip(&rgb).map(|(a, b)| (f64::from(*a) - f64::from(*b)).powi(2)).sum::<f64>() / rgb.len() as f64
     } else {
         f64::INFINITY
     };
@@ -56,7 +53,7 @@ fn check_golden(name: &str, film: &Film, pixels: &[[f32; 4]]) -> Result<(), Stri
         return Ok(());
     }
     let actual = dir.join(format!("{name}-actual.png"));
-    let _ = image::save_buffer(&actual, &rgb, w, h, image::ExtendedColorType::Rgb8);
+    let _ = write_rgb8(&actual, &rgb, w, h);
     Err(format!(
         "{name}: PSNR {p:.1} dB, max difference {max} levels against {} (see {})",
         path.display(),

@@ -41,7 +41,7 @@ fn dir() -> PathBuf {
         }
         // 4 × 4 RGB: texel (i, j) is (i/3, j/3, 0.5).
         let px: Vec<u8> = (0..16).flat_map(|k| [(k % 4) as u8 * 85, (k / 4) as u8 * 85, 128]).collect();
-        image::save_buffer(dir.join("ramp.png"), &px, 4, 4, image::ExtendedColorType::Rgb8).expect("png");
+        anysl_renderers::write_rgb8(&dir.join("ramp.png"), &px, 4, 4).expect("png");
         dir
     })
     .clone()

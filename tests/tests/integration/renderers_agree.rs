@@ -17,7 +17,9 @@
 //! must stay far below the bounds (40 dB packet, 35 dB pbrt-like active).
 
 use anysl_core::Shader;
-use anysl_renderers::{render_packet, render_pbrt, render_scalar, scenes, Image, Integrator, RenderOptions, Scene};
+use anysl_renderers::{
+    read_rgb8, render_packet, render_pbrt, render_scalar, scenes, write_rgb8, Image, Integrator, RenderOptions, Scene,
+};
 use anysl_shaders::{table1_lights, Light, Surface};
 use anysl_simd::F32x8;
 use std::path::{Path, PathBuf};
@@ -112,22 +114,16 @@ fn check_golden(name: &str, img: &Image) -> Result<(), String> {
         eprintln!("blessed {}", path.display());
         return Ok(());
     }
-    let golden = image::open(&path)
-        .map_err(|e| format!("{}: {e} (run with ANYSL_BLESS=1 to create it)", path.display()))?
-        .to_rgb8();
+    let (w, h, golden) = read_rgb8(&path).map_err(|e| format!("{e} (run with ANYSL_BLESS=1 to create it)"))?;
     let actual = img.to_srgb8();
-    let (w, h) = golden.dimensions();
-    let (psnr, max) = if (w, h) == (img.width, img.height) { compare8(golden.as_raw(), &actual) } else { (0.0, 255) };
+    let (psnr, max) = if (w, h) == (img.width, img.height) { compare8(&golden, &actual) } else { (0.0, 255) };
     if psnr >= GOLDEN_MIN_PSNR && max <= GOLDEN_MAX_LEVELS {
         return Ok(());
     }
     img.save_png(dir.join(format!("{name}-actual.png")))?;
     if (w, h) == (img.width, img.height) {
-        let diff: Vec<u8> =
-            golden.as_raw().iter().zip(&actual).map(|(a, b)| a.abs_diff(*b).saturating_mul(8)).collect();
-        let diff_path = dir.join(format!("{name}-diff.png"));
-        image::save_buffer(&diff_path, &diff, w, h, image::ExtendedColorType::Rgb8)
-            .map_err(|e| format!("{}: {e}", diff_path.display()))?;
+        let diff: Vec<u8> = golden.iter().zip(&actual).map(|(a, b)| a.abs_diff(*b).saturating_mul(8)).collect();
+        write_rgb8(&dir.join(format!("{name}-diff.png")), &diff, w, h)?;
     }
     Err(format!(
         "{name}: {psnr:.1} dB (need {GOLDEN_MIN_PSNR}), max difference {max} levels (allowed {GOLDEN_MAX_LEVELS}), \

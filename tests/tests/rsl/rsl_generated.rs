@@ -2,8 +2,9 @@
 //! (`anysl_shaders::rsl`), against the hand-written generic Rust shaders they port:
 //!
 //! * the same pictures (max abs pixel difference ≤ 1e-4) on the `table1` scene in the packet,
-//!   scalar and active pbrt-like renderers, with the hand-written lights and with the generated
-//!   lights;
+//!   scalar and active pbrt-like renderers with the hand-written lights, and in the scalar
+//!   renderer with the generated lights (the renderers share the light loop; each pairing of
+//!   shader and light types is a full instantiation of a renderer, so one renderer has it);
 //! * the same values on random shading points (`PointSet`) at f32, F32x8 and Dual<f32>, a
 //!   tighter comparison;
 //! * the same metadata (names, types, defaults, storage, `uses_derivatives`).
@@ -181,20 +182,8 @@ fn generated_shaders_render_like_hand_written_in_every_renderer() {
             &r_packet,
             &render_packet::<F32x8, _, _>(&with_hand_lights, &o),
         );
-        check(
-            &mut failures,
-            &format!("{name} packet, generated lights"),
-            &r_packet,
-            &render_packet::<F32x8, _, _>(&with_gen_lights, &o),
-        );
         let r_pbrt = render_pbrt(&reference, &o, Integrator::Active);
         check(&mut failures, &format!("{name} pbrt"), &r_pbrt, &render_pbrt(&with_hand_lights, &o, Integrator::Active));
-        check(
-            &mut failures,
-            &format!("{name} pbrt, generated lights"),
-            &r_pbrt,
-            &render_pbrt(&with_gen_lights, &o, Integrator::Active),
-        );
     }
     assert!(failures.is_empty(), "generated RSL renders differently:\n{}", failures.join("\n"));
 }

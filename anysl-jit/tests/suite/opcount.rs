@@ -1,7 +1,7 @@
 //! Operation counts of a shader whose counts are known by hand.
 
-use crate::{JitOptions, JitShader, OpCounts, Variant};
 use anysl_core::points::{field, shade_points, PointSet, ShadeOut};
+use anysl_jit::{JitOptions, JitShader, OpCounts, Variant};
 use anysl_shaders::Light;
 use anysl_simd::{F32x8, Pair};
 

@@ -2,8 +2,13 @@
 //! compiled for one selector against the general functions, the inlined noise against the
 //! library's.
 
-use super::spline::BASES;
-use super::*;
+use anysl_core::prelude::*;
+use anysl_jit::abi::{JitFloat, RtFn};
+use anysl_jit::rt::{
+    Bin, Geo, HostCtx, NoiseOp, NoiseSel, RtKind, Un, HOST_CTX_LIGHTS, HOST_CTX_N_LIGHTS, SPLINE_BASES,
+    SPLINE_BASIS_BY_INDEX as BASES,
+};
+use anysl_jit::Variant;
 
 /// The compiled code reads the lights at fixed offsets of `HostCtx` and each light's
 /// fields at the offsets of `LightData` (taken from the type itself).
@@ -56,10 +61,11 @@ fn specialized_runtime_functions_compute_what_the_general_ones_do() {
     let mut specialized = 0;
     for (kind, aux) in cases {
         // Other types have no copies: every call gets the general function.
-        assert_eq!(rt_addr::<f32>(kind, aux), rt_table::<f32>()[kind as usize] as usize);
-        assert_eq!(rt_addr::<anysl_ad::Dual<X>>(kind, aux), rt_table::<anysl_ad::Dual<X>>()[kind as usize] as usize);
-        let general = rt_table::<X>()[kind as usize];
-        let addr = rt_addr::<X>(kind, aux);
+        assert_eq!(Variant::F32.rt_addr(kind, aux), Variant::F32.rt_general_addr(kind));
+        assert_eq!(Variant::DualX8.rt_addr(kind, aux), Variant::DualX8.rt_general_addr(kind));
+        // SAFETY: the address of an `RtFn` (`rt_general_addr`).
+        let general: RtFn = unsafe { core::mem::transmute::<usize, RtFn>(Variant::X8.rt_general_addr(kind)) };
+        let addr = Variant::X8.rt_addr(kind, aux);
         if addr != general as usize {
             specialized += 1;
         }
@@ -76,8 +82,8 @@ fn specialized_runtime_functions_compute_what_the_general_ones_do() {
     assert!(specialized > 100, "only {specialized} calls have their own function");
     // A call without a specialized copy gets the general function.
     assert_eq!(
-        rt_addr::<X>(RtKind::Geo, Geo::CTransform as u32 | 1 << 8),
-        rt_table::<X>()[RtKind::Geo as usize] as usize
+        Variant::X8.rt_addr(RtKind::Geo, Geo::CTransform as u32 | 1 << 8),
+        Variant::X8.rt_general_addr(RtKind::Geo)
     );
 }
 
@@ -87,12 +93,13 @@ fn specialized_runtime_functions_compute_what_the_general_ones_do() {
 #[test]
 fn inlined_runtime_noise_is_the_library_noise() {
     fn run<F: JitFloat>(aux: u32, args: &[F], outs: usize) -> Vec<F> {
+        let variant = if F::LANES == 1 { Variant::F32 } else { Variant::X8 };
         let mut inp = vec![0f32; 8 * F::STRIDE];
         for (k, a) in args.iter().enumerate() {
             unsafe { a.write(inp.as_mut_ptr().add(k * F::STRIDE)) };
         }
         let mut out = vec![0f32; 3 * F::STRIDE];
-        let f: RtFn = unsafe { core::mem::transmute::<usize, RtFn>(rt_addr::<F>(RtKind::Noise, aux)) };
+        let f: RtFn = unsafe { core::mem::transmute::<usize, RtFn>(variant.rt_addr(RtKind::Noise, aux)) };
         unsafe { f(core::ptr::null_mut(), core::ptr::null(), inp.as_ptr(), out.as_mut_ptr(), aux) };
         (0..outs).map(|k| unsafe { F::read(out.as_ptr().add(k * F::STRIDE)) }).collect()
     }
