@@ -137,32 +137,31 @@ fn finish(outcome: read::Outcome) -> Result<Report, RibError> {
 ///
 /// `ReadArchive` names are looked up relative to the reading file's directory, then along the
 /// `"archive"` search path.
-pub fn parse_file<B: RibBuilder + ?Sized>(
-    path: impl AsRef<Path>,
-    builder: &mut B,
-    options: &Options,
-) -> Result<Report, RibError> {
-    finish(read::Reader::new(builder, options).read_path(path.as_ref()))
+///
+/// The builder is a trait object (as in the three functions here): the reader and its
+/// dispatch on request names are compiled once, in this crate, not in every crate that reads
+/// RIB (a call per request through a vtable costs nothing next to tokenizing).
+pub fn parse_file(path: impl AsRef<Path>, builder: &mut dyn RibBuilder, options: &Options) -> Result<Report, RibError> {
+    parse_path(path.as_ref(), builder, options)
+}
+
+fn parse_path(path: &Path, builder: &mut dyn RibBuilder, options: &Options) -> Result<Report, RibError> {
+    finish(read::Reader::new(builder, options).read_path(path))
 }
 
 /// Reads RIB text named `name` (the name is shown in diagnostics) into `builder`.
 ///
 /// `ReadArchive` names are looked up relative to the current directory, then along the
 /// `"archive"` search path.
-pub fn parse_str<B: RibBuilder + ?Sized>(
-    name: &str,
-    text: &str,
-    builder: &mut B,
-    options: &Options,
-) -> Result<Report, RibError> {
+pub fn parse_str(name: &str, text: &str, builder: &mut dyn RibBuilder, options: &Options) -> Result<Report, RibError> {
     parse_bytes(name, text.as_bytes(), builder, options)
 }
 
 /// Reads RIB bytes (plain or gzip-compressed) named `name` into `builder`.
-pub fn parse_bytes<B: RibBuilder + ?Sized>(
+pub fn parse_bytes(
     name: &str,
     bytes: &[u8],
-    builder: &mut B,
+    builder: &mut dyn RibBuilder,
     options: &Options,
 ) -> Result<Report, RibError> {
     finish(read::Reader::new(builder, options).read_bytes(name, bytes))
