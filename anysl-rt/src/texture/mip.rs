@@ -79,6 +79,12 @@ pub struct MipMap {
     levels: Vec<Level>,
 }
 
+thread_local! {
+    /// [`MipMap::box_at`]'s weights along s and t.
+    static AXIS_WEIGHTS: core::cell::RefCell<(Vec<(i64, f64)>, Vec<(i64, f64)>)> =
+        const { core::cell::RefCell::new((Vec::new(), Vec::new())) };
+}
+
 /// The area weights of the texels a 1-D interval `[a, b)` (in texels) overlaps, each times
 /// a Gaussian of its centre's distance from the interval's middle when `gauss`.
 fn weights(a: f64, b: f64, gauss: bool, out: &mut Vec<(i64, f64)>) {
@@ -247,26 +253,30 @@ impl MipMap {
         let (fw, fh) = ((ws * l.w as f64).max(1.0), (wt * l.h as f64).max(1.0));
         let (cx, cy) = (s * l.w as f64, t * l.h as f64);
         let gauss = filter == Filter::Gaussian;
-        let (mut wx, mut wy) = (Vec::with_capacity(8), Vec::with_capacity(8));
-        weights(cx - fw * 0.5, cx + fw * 0.5, gauss, &mut wx);
-        weights(cy - fh * 0.5, cy + fh * 0.5, gauss, &mut wy);
         out.fill(0.0);
         let mut total = 0.0;
         let c = self.channels;
-        for &(j, wj) in &wy {
-            let row = wrap.1.index(j, l.h);
-            for &(i, wi) in &wx {
-                let wgt = wi * wj;
-                total += wgt;
-                let (Some(y), Some(x)) = (row, wrap.0.index(i, l.w)) else { continue };
-                let texel = &l.data[(y * l.w + x) * c..][..c];
-                for (k, o) in out.iter_mut().enumerate() {
-                    if let Some(v) = texel.get(first + k) {
-                        *o += wgt * f64::from(*v);
+        // The two axes' weights in buffers kept per thread: a look-up (per point and lane in
+        // a shader's inner loop) allocates nothing.
+        AXIS_WEIGHTS.with(|axes| {
+            let (wx, wy) = &mut *axes.borrow_mut();
+            weights(cx - fw * 0.5, cx + fw * 0.5, gauss, wx);
+            weights(cy - fh * 0.5, cy + fh * 0.5, gauss, wy);
+            for &(j, wj) in wy.iter() {
+                let row = wrap.1.index(j, l.h);
+                for &(i, wi) in wx.iter() {
+                    let wgt = wi * wj;
+                    total += wgt;
+                    let (Some(y), Some(x)) = (row, wrap.0.index(i, l.w)) else { continue };
+                    let texel = &l.data[(y * l.w + x) * c..][..c];
+                    for (k, o) in out.iter_mut().enumerate() {
+                        if let Some(v) = texel.get(first + k) {
+                            *o += wgt * f64::from(*v);
+                        }
                     }
                 }
             }
-        }
+        });
         if total > 0.0 {
             for o in out.iter_mut() {
                 *o /= total;
