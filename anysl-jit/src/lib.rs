@@ -163,31 +163,29 @@ impl Variant {
     #[must_use]
     #[inline(never)]
     pub fn rt_general_addr(self, kind: rt::RtKind) -> usize {
-        let table = match self {
-            Self::F32 => rt::rt_table::<f32>(),
-            Self::X4 => rt::rt_table::<F32x4>(),
-            Self::X8 | Self::X8x4 => rt::rt_table::<F32x8>(),
-            Self::X16 | Self::X16x2 => rt::rt_table::<F32x16>(),
-            Self::DualF32 => rt::rt_table::<Dual<f32>>(),
-            Self::DualX8 => rt::rt_table::<Dual<F32x8>>(),
-        };
-        table[kind as usize] as usize
+        (self.runtime().1)()[kind as usize] as usize
     }
 
     /// Where compiled code of this variant calls for a runtime function ([`rt::rt_addr`]).
-    /// Several packets per call use the function of one packet, called once per packet (so
-    /// the runtime library is compiled for no more float types).
     #[inline(never)]
     fn rt_resolver(self) -> fn(rt::RtKind, u32) -> usize {
+        self.runtime().0
+    }
+
+    /// The runtime of this variant's float type: [`rt::rt_addr`] and [`rt::rt_table`].
+    /// Several packets per call use the functions of one packet, called once per packet (so
+    /// the runtime library is compiled for no more float types).
+    fn runtime(self) -> (fn(rt::RtKind, u32) -> usize, fn() -> [abi::RtFn; 5]) {
+        fn of<F: abi::JitFloat>() -> (fn(rt::RtKind, u32) -> usize, fn() -> [abi::RtFn; 5]) {
+            (rt::rt_addr::<F>, rt::rt_table::<F>)
+        }
         match self {
-            Self::X8x4 => rt::rt_addr::<F32x8>,
-            Self::X16x2 => rt::rt_addr::<F32x16>,
-            Self::F32 => rt::rt_addr::<f32>,
-            Self::X4 => rt::rt_addr::<F32x4>,
-            Self::X8 => rt::rt_addr::<F32x8>,
-            Self::X16 => rt::rt_addr::<F32x16>,
-            Self::DualF32 => rt::rt_addr::<Dual<f32>>,
-            Self::DualX8 => rt::rt_addr::<Dual<F32x8>>,
+            Self::F32 => of::<f32>(),
+            Self::X4 => of::<F32x4>(),
+            Self::X8 | Self::X8x4 => of::<F32x8>(),
+            Self::X16 | Self::X16x2 => of::<F32x16>(),
+            Self::DualF32 => of::<Dual<f32>>(),
+            Self::DualX8 => of::<Dual<F32x8>>(),
         }
     }
 }

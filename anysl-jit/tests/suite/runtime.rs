@@ -93,7 +93,7 @@ fn specialized_runtime_functions_compute_what_the_general_ones_do() {
 #[test]
 fn inlined_runtime_noise_is_the_library_noise() {
     fn run<F: JitFloat>(aux: u32, args: &[F], outs: usize) -> Vec<F> {
-        let variant = if F::LANES == 1 { Variant::F32 } else { Variant::X8 };
+        let variant = anysl_jit::variant_of::<F>().expect("a JIT float type");
         let mut inp = vec![0f32; 8 * F::STRIDE];
         for (k, a) in args.iter().enumerate() {
             unsafe { a.write(inp.as_mut_ptr().add(k * F::STRIDE)) };
