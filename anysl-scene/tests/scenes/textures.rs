@@ -49,7 +49,11 @@ fn dir() -> PathBuf {
 
 fn frames(rib: &str) -> Vec<FrameDesc> {
     let mut b = SceneBuilder::new(BuildOptions::default());
-    let path = dir().join("scene.rib");
+    // One file per call: the tests of this module run in parallel, and a file rewritten by one
+    // while another reads it reads as empty.
+    static NEXT: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+    let n = NEXT.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let path = dir().join(format!("scene{n}.rib"));
     std::fs::write(&path, rib).expect("write rib");
     if let Err(e) = anysl_rib::parse_file(&path, &mut b, &anysl_rib::Options::new()) {
         panic!("{}", e.render());
