@@ -334,6 +334,10 @@ impl<F: ShadingFloat> ShadingFloat for Dual<F> {
         self.val.floor_bits()
     }
     #[inline(always)]
+    fn lattice_bits(self) -> F::Bits {
+        self.val.lattice_bits()
+    }
+    #[inline(always)]
     fn lookup16(table: &[f32; 16], h: F::Bits) -> Self {
         Self::constant(F::lookup16(table, h))
     }

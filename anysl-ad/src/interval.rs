@@ -431,6 +431,11 @@ impl<F: ShadingFloat> ShadingFloat for Interval<F> {
     fn floor_bits(self) -> IBits<F> {
         IBits::new(self.lo.floor_bits(), self.lo.floor().eq(self.hi.floor()))
     }
+    /// Known where the interval is one integer.
+    #[inline(always)]
+    fn lattice_bits(self) -> IBits<F> {
+        IBits::new(self.lo.lattice_bits(), self.lo.eq(self.hi))
+    }
     /// The table entry where the bits are known, the hull of the table elsewhere.
     #[inline(always)]
     fn lookup16(table: &[f32; 16], h: IBits<F>) -> Self {

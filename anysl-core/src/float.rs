@@ -322,6 +322,11 @@ pub trait ShadingFloat:
     /// The two's-complement bit pattern of `(i32) floor(self)` (the lattice coordinate of the
     /// noise hash). Values outside the i32 range saturate.
     fn floor_bits(self) -> Self::Bits;
+    /// The bits of `self` modulo 2^32 where `self` is an integer with |self| ≤ 2^31 (a noise
+    /// cell's corner after `floor` and the reduction to the hash period): `(i64) self as u32`,
+    /// one conversion without [`floor_bits`](Self::floor_bits)' range checks. Other inputs
+    /// give unspecified bits.
+    fn lattice_bits(self) -> Self::Bits;
     /// `(h >> 8) · 2^-24`: the top 24 hash bits as a number in [0, 1), exact in f32.
     fn bits_to_unit(h: Self::Bits) -> Self;
     /// `table[h & 15]` lane by lane: a 16-entry constant table held in registers (one
@@ -591,6 +596,11 @@ macro_rules! impl_scalar_float {
             fn floor_bits(self) -> u32 {
                 // `as` saturates out-of-range values and maps NaN to 0.
                 (<$t>::floor(self) as i32) as u32
+            }
+            #[inline(always)]
+            fn lattice_bits(self) -> u32 {
+                // Wrapping: 2^31 gives the bits of -2^31, as the vector conversion does.
+                (self as i64) as u32
             }
             #[inline(always)]
             fn bits_to_unit(h: u32) -> Self {

@@ -410,6 +410,11 @@ macro_rules! simd_width {
                 $U(wide::bytemuck::cast(math::floor_to_i32(self.0)))
             }
             #[inline(always)]
+            fn lattice_bits(self) -> $U {
+                // The conversion's out-of-range answer, i32::MIN, is 2^31 modulo 2^32.
+                $U(wide::bytemuck::cast(self.0.fast_trunc_int()))
+            }
+            #[inline(always)]
             fn lookup16(table: &[f32; 16], h: $U) -> Self {
                 Self(math::$lookup(table, h.0))
             }

@@ -281,6 +281,10 @@ impl<F: ShadingFloat> ShadingFloat for Pair<F> {
         PairBits(self.0.floor_bits(), self.1.floor_bits())
     }
     #[inline(always)]
+    fn lattice_bits(self) -> Self::Bits {
+        PairBits(self.0.lattice_bits(), self.1.lattice_bits())
+    }
+    #[inline(always)]
     fn lookup16(table: &[f32; 16], h: Self::Bits) -> Self {
         Self(F::lookup16(table, h.0), F::lookup16(table, h.1))
     }

@@ -290,6 +290,23 @@ fn exact_unary<F: Lanes>() {
             assert_eq!(b.lane(i), x.floor_bits(), "floor_bits({x:e})");
         }
     }
+    // The ends of the i32 range, where the conversion saturates.
+    let ends = [2147483648.0f32, 2147483520.0, -2147483648.0, -2147483904.0, 4294967296.0, -0.25, f32::NAN];
+    for chunk in ends.chunks(F::LANES) {
+        let b = F::gather(chunk, |x| *x).floor_bits();
+        for (i, &x) in chunk.iter().enumerate() {
+            assert_eq!(b.lane(i), x.floor_bits(), "floor_bits({x:e})");
+        }
+    }
+    // Bits of a cell corner: the integer modulo 2^32 up to |x| = 2^31, as the scalar type.
+    let corners = [2147483648.0f32, -2147483648.0, 2147483520.0, -2147483520.0, 0.0, -0.0, -1.0, 7.0, -16777216.0];
+    for chunk in corners.chunks(F::LANES) {
+        let b = F::gather(chunk, |x| *x).lattice_bits();
+        for (i, &x) in chunk.iter().enumerate() {
+            assert_eq!(b.lane(i), (x as f64 as i64) as u32, "lattice_bits({x:e})");
+            assert_eq!(b.lane(i), x.lattice_bits(), "lattice_bits({x:e})");
+        }
+    }
 }
 
 fn exact_binary<F: Lanes>() {

@@ -99,8 +99,8 @@ fn lerp<F: ShadingFloat>(t: F, a: F, b: F) -> F {
 }
 
 /// `x` reduced modulo the hash period into [-2^31, 2^31] (`x - 2^32·round(x/2^32)`, exact in
-/// binary floating point), so that `floor` of it is a valid i32 whose bits are those of
-/// `floor(x)` modulo 2^32 — what the hash would see with unbounded integers — and its fraction
+/// binary floating point), so that the bits of its `floor` ([`ShadingFloat::lattice_bits`]) are
+/// those of `floor(x)` modulo 2^32 — what the hash would see with unbounded integers — and its fraction
 /// is that of `x`. Without it, lattice coordinates beyond ±2^31 saturate and every cell there
 /// hashes alike. Taken only when some lane needs it; the identity (bit for bit) elsewhere.
 #[inline(always)]
@@ -123,7 +123,7 @@ fn cell<F: ShadingFloat>(x: F, period: Option<F>) -> (F, F::Bits, F::Bits) {
     let f = x - xf;
     match period {
         None => {
-            let i = xf.floor_bits();
+            let i = xf.lattice_bits();
             (f, i, i.wrapping_add(F::Bits::splat(1)))
         }
         Some(p) => {

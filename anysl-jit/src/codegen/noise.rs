@@ -90,7 +90,7 @@ impl<'c> Cg<'c, '_> {
         let x = self.reduce_to_period(x);
         let xf = self.floor(x);
         let f = self.sub(x, xf);
-        let i = self.floor_bits(xf.v);
+        let i = self.lattice_bits(xf.v);
         let one = self.iconst(i, 1);
         (f, i, self.ibin('+', i, one))
     }
@@ -227,6 +227,26 @@ impl<'c> Cg<'c, '_> {
         let nan = self.fcmp_raw(FloatPredicate::UNO, x, x);
         let v = self.sel_raw(over, self.iconst_like(x, i32::MAX as u32).0, conv);
         I(self.sel_raw(nan, self.iconst_like(x, 0).0, v))
+    }
+
+    /// Bits of the integer `x`, |x| ≤ 2^31, modulo 2^32 (`lattice_bits`): 2^31 gives the bits
+    /// of -2^31. A plain conversion of the value clamped below 2^31 (out-of-range `fptosi` is
+    /// poison), and i32::MIN where it was 2^31.
+    fn lattice_bits(&self, x: BasicValueEnum<'c>) -> I<'c> {
+        let top = self.constant_like(x, 2_147_483_648.0);
+        let clamped = self.call_intr("llvm.minnum", &[x.get_type()], &[x, self.constant_like(x, 2_147_483_520.0)]);
+        let conv = match clamped {
+            BasicValueEnum::FloatValue(f) => {
+                self.b.build_float_to_signed_int(f, self.cx.i32_type(), "").expect("fptosi").into()
+            }
+            BasicValueEnum::VectorValue(v) => {
+                let n = v.get_type().get_size();
+                self.b.build_float_to_signed_int(v, self.cx.i32_type().vec_type(n), "").expect("fptosi").into()
+            }
+            _ => unreachable!("float lanes"),
+        };
+        let at_top = self.fcmp_raw(FloatPredicate::OGE, x, top);
+        I(self.sel_raw(at_top, self.iconst_like(x, i32::MIN as u32).0, conv))
     }
 
     /// The float constant `c` shaped like `x`.
