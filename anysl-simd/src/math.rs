@@ -756,23 +756,39 @@ fn pow_halves<W: Wide>(x: W, n2: W) -> W {
 }
 
 /// [`pow_halves`] for the same `n2` in every lane: the same operations per lane, steered by
-/// the bits of `n2` without masks.
+/// the bits of `n2` without masks, less those whose result is known: the power is 1 until the
+/// first set bit (so that bit's power is taken as it is, not multiplied by 1), and a factor
+/// whose low part is 0 (`x` before the first square, `√x`) has no cross term. Bit for bit
+/// [`pow_halves`]' result wherever that is finite (the terms left out are exact zeros).
 #[inline(always)]
 fn pow_halves_uniform<W: Wide>(x: W, n2: u32) -> W {
-    let (mut rh, mut rl) = (k::<W>(1.0), k::<W>(0.0));
+    let mut r: Option<(W, W)> = None;
     let (mut bh, mut bl) = (x, k::<W>(0.0));
+    let mut squared = false;
     let mut rest = n2 >> 1;
     while rest != 0 {
         if rest & 1 != 0 {
-            (rh, rl) = dd_mul(rh, rl, bh, bl);
+            r = Some(match r {
+                None => (bh, bl),
+                Some((rh, rl)) => dd_mul(rh, rl, bh, bl),
+            });
         }
         rest >>= 1;
         if rest != 0 {
-            (bh, bl) = dd_sq(bh, bl);
+            (bh, bl) = if squared {
+                dd_sq(bh, bl)
+            } else {
+                let p = bh * bh;
+                (p, bh.fma(bh, -p))
+            };
+            squared = true;
         }
     }
+    let (mut rh, mut rl) = r.unwrap_or((k(1.0), k(0.0)));
     if n2 & 1 != 0 {
-        (rh, rl) = dd_mul(rh, rl, x.sqrt(), k(0.0));
+        let s = x.sqrt();
+        let p = rh * s;
+        (rh, rl) = (p, rl.fma(s, rh.fma(s, -p)));
     }
     rh + rl
 }

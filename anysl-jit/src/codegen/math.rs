@@ -444,33 +444,47 @@ impl<'c> Cg<'c, '_> {
         let n = b.build_float_to_unsigned_int(round, self.cx.i32_type(), "").expect("fptoui");
         let one = self.cx.i32_type().const_int(1, false);
         let zero = self.cx.i32_type().const_zero();
+        // The library's steps less those whose result is known: the power is 1 until the
+        // first set bit (`started`), whose power is then taken as it is; the first square and
+        // the factor `√x` have a zero low part, so no cross term.
         let (mut rh, mut rl) = (self.kf(1.0), self.kf(0.0));
         let (mut bh, mut bl) = (x, self.kf(0.0));
+        let mut started = self.cx.bool_type().const_zero();
         let mut rest = b.build_right_shift(n, one, false, "").expect("lshr");
         for step in 0..5 {
             let bit = b
                 .build_int_compare(IntPredicate::NE, b.build_and(rest, one, "").expect("and"), zero, "")
                 .expect("icmp");
-            let r = self.k_when(bit, vec![rh, rl], |cg| {
+            let later = b.build_and(bit, started, "").expect("and");
+            let first = b.build_and(bit, b.build_not(started, "").expect("not"), "").expect("and");
+            let r = self.k_when(later, vec![rh, rl], |cg| {
                 let (p, e) = cg.k_dd_mul(rh, rl, bh, bl);
                 vec![p, e]
             });
+            let r = self.k_when(first, r, |_| vec![bh, bl]);
             (rh, rl) = (r[0], r[1]);
+            started = b.build_or(started, bit, "").expect("or");
             rest = b.build_right_shift(rest, one, false, "").expect("lshr");
             if step == 4 {
                 break;
             }
             let more = b.build_int_compare(IntPredicate::NE, rest, zero, "").expect("icmp");
             let sq = self.k_when(more, vec![bh, bl], |cg| {
-                let (p, e) = cg.k_dd_sq(bh, bl);
-                vec![p, e]
+                if step == 0 {
+                    let p = cg.kmul(bh, bh);
+                    vec![p, cg.kfma(bh, bh, cg.kneg(p))]
+                } else {
+                    let (p, e) = cg.k_dd_sq(bh, bl);
+                    vec![p, e]
+                }
             });
             (bh, bl) = (sq[0], sq[1]);
         }
         let odd = b.build_int_compare(IntPredicate::NE, b.build_and(n, one, "").expect("and"), zero, "").expect("icmp");
         let r = self.k_when(odd, vec![rh, rl], |cg| {
-            let (p, e) = cg.k_dd_mul(rh, rl, cg.kintr("llvm.sqrt", x), cg.kf(0.0));
-            vec![p, e]
+            let s = cg.kintr("llvm.sqrt", x);
+            let p = cg.kmul(rh, s);
+            vec![p, cg.kfma(rl, s, cg.kfma(rh, s, cg.kneg(p)))]
         });
         let r = self.kadd(r[0], r[1]);
         let every = self.kcmp(FloatPredicate::PredicateTrue, x, x);
