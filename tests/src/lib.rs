@@ -4,4 +4,3 @@
 #![doc = include_str!("../../README.md")]
 
 pub mod rsl_harness;
-pub mod workload_harness;

@@ -11,10 +11,7 @@
 //! assert!(check(&d, &[("Ci", vec![0.6, 0.5, 0.5])]).is_err());
 //! ```
 
-use anysl_core::{Globals, Mask, ParamValue, PointContext, ShadingFloat};
-use anysl_rsl::back::interp::{release, run_batch, Program};
-use anysl_rsl::ir::{Const, Global};
-use anysl_shaders::Light;
+use anysl_core::{Globals, ParamValue, ShadingFloat};
 
 /// Default absolute tolerance of an `// expect:` line.
 pub const DEFAULT_TOL: f64 = 1e-5;
@@ -142,57 +139,4 @@ pub fn check(d: &Directives, outputs: &[(&str, Vec<f64>)]) -> Result<(), String>
     } else {
         Err(errs.join("; "))
     }
-}
-
-/// A parameter value as the interpreter's constant (arrays have none).
-pub fn param_const(v: &ParamValue) -> Option<Const> {
-    Some(match v {
-        ParamValue::Float(x) => Const::Float(*x),
-        ParamValue::Triple(t) => Const::Triple(*t),
-        ParamValue::String(s) => Const::Str(s.clone()),
-        ParamValue::Matrix(m) => Const::Matrix(*m),
-        ParamValue::Array(_) => return None,
-    })
-}
-
-/// Runs `prog` on `chunks` copies of the 1×1 grid point and returns lane `lane` of chunk
-/// `chunk`'s outputs.
-pub fn run<F: ShadingFloat>(
-    prog: &Program,
-    values: &[Const],
-    d: &Directives,
-    lights: &[Light],
-    chunks: usize,
-) -> Vec<Vec<(String, Vec<f64>)>> {
-    let mut ctxs: Vec<_> = (0..chunks)
-        .map(|_| {
-            let mut ctx = PointContext::new(grid_globals::<F>(d, 0, 0, 1, 1), lights);
-            ctx.spaces = &d.spaces;
-            ctx
-        })
-        .collect();
-    let masks = vec![F::Mask::splat(true); chunks];
-    let fr = run_batch::<F, _>(prog, values, &mut ctxs, &masks);
-    let mut out = Vec::new();
-    for k in 0..chunks {
-        for lane in 0..F::LANES {
-            let read = |loc| fr.read(loc, k).iter().map(|x: &F| x.lane(lane)).collect::<Vec<f64>>();
-            let mut o = Vec::new();
-            if let Some(l) = prog.global_loc(Global::Ci) {
-                o.push(("Ci".to_string(), read(l)));
-            }
-            match prog.global_loc(Global::Oi) {
-                Some(l) => o.push(("Oi".to_string(), read(l))),
-                None => o.push(("Oi".into(), vec![1.0; 3])),
-            }
-            for (i, p) in prog.module.params.iter().enumerate() {
-                if let (true, Some(l)) = (p.output, prog.param_loc(i)) {
-                    o.push((p.name.clone(), read(l)));
-                }
-            }
-            out.push(o);
-        }
-    }
-    release(fr);
-    out
 }

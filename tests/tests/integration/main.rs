@@ -7,5 +7,6 @@ mod docs_links;
 mod instantiations;
 mod layout;
 mod renderers_agree;
+mod scenes_jit;
 mod stability;
 mod workload;

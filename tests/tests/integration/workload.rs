@@ -3,14 +3,34 @@
 //! arrays (acceptance bound 1e-4 max abs error; the f64 instantiation must reproduce the
 //! reference to its f32 rounding). The `.sl` versions of the shaders
 //! (`shaders/rsl/workload/`) through the interpreter (batched and one chunk at a time) and
-//! through the JIT (f32, x8, x16; `anysl-tests-jit`) are held to the same bound.
+//! through the JIT (f32, x8, x16) are held to the same bound.
 
 use anysl_ad::Dual;
 use anysl_core::stdlib::{lattice_hash, perlin3, snoise3};
 use anysl_core::{LatticeBits, Mask, ShadingFloat, Vec3};
-use anysl_shaders::workload::{self, reference, WorkloadShader, SIZE};
-use anysl_simd::{F32x16, F32x4, F32x8};
-use anysl_tests::workload_harness::{check_subset, interp_shader, reference_image, scene, shade_subset};
+use anysl_jit::{JitOptions, JitShader, Variant};
+use anysl_rsl::back::interp::{InterpShader, Program};
+use anysl_rsl::passes::{optimize, PassOptions};
+use anysl_rsl::{compile_source, CompileOptions};
+use anysl_shaders::workload::{self, reference, WorkloadScene, WorkloadShader, SIZE};
+use anysl_simd::{F32x16, F32x4, F32x8, Pair};
+use std::sync::{Arc, OnceLock};
+
+fn scene() -> &'static WorkloadScene {
+    static SCENE: OnceLock<WorkloadScene> = OnceLock::new();
+    SCENE.get_or_init(WorkloadScene::new)
+}
+
+fn reference_image(shader: &str) -> &'static [f32] {
+    static REFS: OnceLock<Vec<(String, Vec<f32>)>> = OnceLock::new();
+    let refs = REFS.get_or_init(|| {
+        WorkloadShader::NAMES
+            .iter()
+            .map(|n| (n.to_string(), reference::load_reference(n).expect("reference arrays in the repo")))
+            .collect()
+    });
+    &refs.iter().find(|(n, _)| n == shader).expect("a workload shader").1
+}
 
 fn hash_lanes<F: ShadingFloat>(ijk: [i32; 3]) -> F::Bits {
     lattice_hash(&ijk.map(|c| <F::Bits as LatticeBits>::splat(c as u32)), 0)
@@ -204,6 +224,18 @@ fn snoise_is_the_workload_noise_at_every_input() {
     assert!(largest < 1.0, "largest |noise| {largest}");
 }
 
+/// Compiles a workload shader's embedded `.sl` source.
+fn sl_module(shader: &WorkloadShader) -> anysl_rsl::ir::Module {
+    compile_source(shader.sl_file_name(), shader.sl_source(), &CompileOptions::default())
+        .unwrap_or_else(|e| panic!("{e}"))
+        .module
+}
+
+fn interp_shader(shader: &WorkloadShader) -> InterpShader {
+    let m = optimize(sl_module(shader), &PassOptions::default());
+    InterpShader::new(Arc::new(Program::new(m).expect("the interpreter runs the module")))
+}
+
 /// The `.sl` shaders have the Rust shaders' names, parameters and defaults.
 #[test]
 fn sl_shaders_have_the_rust_parameters() {
@@ -253,5 +285,80 @@ fn interp_f32_surface_matches_reference_on_a_subset() {
         let interp = interp_shader(&shader);
         let ci = shade_subset::<f32, _>(s, &interp, &lights);
         check_subset(s, &ci, &shader, "interp-f32");
+    }
+}
+
+/// Shades every 7th run of 16 points with `shader` (the rest stays NaN).
+fn shade_subset<F: ShadingFloat, S: anysl_core::SurfaceShader>(
+    s: &WorkloadScene,
+    shader: &S,
+    lights: &[anysl_shaders::Light],
+) -> [Vec<f32>; 3] {
+    let n = s.padded_len();
+    let [mut r, mut g, mut b] = [vec![f32::NAN; n], vec![f32::NAN; n], vec![f32::NAN; n]];
+    for start in (0..n).step_by(16 * 7) {
+        let at = start..start + 16;
+        s.shade_surface::<F, S, _>(shader, lights, start, [&mut r[at.clone()], &mut g[at.clone()], &mut b[at]]);
+    }
+    [r, g, b]
+}
+
+/// The shaded points of a subset against the reference pixels.
+fn check_subset(s: &WorkloadScene, ci: &[Vec<f32>; 3], shader: &WorkloadShader, label: &str) {
+    let reference = reference_image(shader.name());
+    let (mut checked, mut worst) = (0, 0.0f32);
+    for (k, &p) in s.pixels().iter().enumerate() {
+        if ci[0][k].is_nan() {
+            continue;
+        }
+        for ch in 0..3 {
+            worst = worst.max((ci[ch][k] - reference[p as usize * 3 + ch]).abs());
+        }
+        checked += 1;
+    }
+    assert!(checked > 20_000, "{label}: only {checked} points shaded");
+    assert!(worst <= 1e-4, "{} {label}: max abs err {worst:e} over {checked} points", shader.name());
+}
+
+/// The `.sl` shaders through the JIT: x8 and x16 over full images, f32 on a subset; the
+/// multi-packet variants (four 8-lane, two 16-lane packets per call) equal their one-packet
+/// variants bit for bit.
+#[test]
+fn jit_matches_reference() {
+    let s = scene();
+    let lights = workload::lights();
+    for shader in WorkloadShader::all() {
+        let jit = JitShader::new(sl_module(&shader), JitOptions::default()).expect("a JIT shader");
+        // Compile explicitly: `shade` would fall back to the interpreter on a compile error.
+        for v in [Variant::F32, Variant::X8, Variant::X16, Variant::X8x4, Variant::X16x2] {
+            if let Err(e) = jit.variant(v) {
+                panic!("{} {v:?}: {e}", shader.name());
+            }
+        }
+        let ci = shade_subset::<f32, _>(s, &jit, &lights);
+        check_subset(s, &ci, &shader, "jit-f32");
+        let n = s.padded_len();
+        let shade = |v: Variant| {
+            let [mut r, mut g, mut b] = [vec![0.0; n], vec![0.0; n], vec![0.0; n]];
+            let out = [&mut r[..], &mut g[..], &mut b[..]];
+            match v {
+                Variant::X8 => s.shade_surface::<F32x8, _, _>(&jit, &lights, 0, out),
+                Variant::X16 => s.shade_surface::<F32x16, _, _>(&jit, &lights, 0, out),
+                Variant::X8x4 => s.shade_surface::<Pair<Pair<F32x8>>, _, _>(&jit, &lights, 0, out),
+                Variant::X16x2 => s.shade_surface::<Pair<F32x16>, _, _>(&jit, &lights, 0, out),
+                _ => unreachable!(),
+            }
+            [r, g, b]
+        };
+        for (one, many) in [(Variant::X8, Variant::X8x4), (Variant::X16, Variant::X16x2)] {
+            let ci = shade(one);
+            let err = reference::image_error(&s.to_image(&ci), reference_image(shader.name()));
+            assert!(err.max_abs_err <= 1e-4 && err.pixels_over_1e3 == 0, "{} {one:?}: {err:?}", shader.name());
+            let cm = shade(many);
+            for ch in 0..3 {
+                let differ = ci[ch].iter().zip(&cm[ch]).filter(|(a, b)| a.to_bits() != b.to_bits()).count();
+                assert_eq!(differ, 0, "{} {many:?} differs from {one:?} in {differ} values", shader.name());
+            }
+        }
     }
 }

@@ -6,15 +6,67 @@
 
 use anysl_ad::Dual;
 use anysl_core::prelude::*;
-use anysl_core::ParamValue;
-use anysl_rsl::back::interp::Program;
-use anysl_rsl::ir::Const;
+use anysl_core::{ParamValue, PointContext};
+use anysl_rsl::back::interp::{release, run_batch, Program};
+use anysl_rsl::ir::{Const, Global};
 use anysl_rsl::passes::{optimize, PassOptions};
 use anysl_rsl::CompileOptions;
 use anysl_shaders::{table1_lights, Light};
 use anysl_simd::F32x8;
-use anysl_tests::rsl_harness::{check, param_const, parse_directives, run};
+use anysl_tests::rsl_harness::{check, grid_globals, parse_directives, Directives};
 use std::path::Path;
+
+pub(crate) fn param_const(v: &ParamValue) -> Option<Const> {
+    Some(match v {
+        ParamValue::Float(x) => Const::Float(*x),
+        ParamValue::Triple(t) => Const::Triple(*t),
+        ParamValue::String(s) => Const::Str(s.clone()),
+        ParamValue::Matrix(m) => Const::Matrix(*m),
+        ParamValue::Array(_) => return None,
+    })
+}
+
+/// Runs `prog` on `chunks` copies of the 1×1 grid point and returns lane `lane` of chunk
+/// `chunk`'s outputs.
+pub(crate) fn run<F: ShadingFloat>(
+    prog: &Program,
+    values: &[Const],
+    d: &Directives,
+    lights: &[Light],
+    chunks: usize,
+) -> Vec<Vec<(String, Vec<f64>)>> {
+    let mut ctxs: Vec<_> = (0..chunks)
+        .map(|_| {
+            let mut ctx = PointContext::new(grid_globals::<F>(d, 0, 0, 1, 1), lights);
+            ctx.spaces = &d.spaces;
+            ctx
+        })
+        .collect();
+    let masks = vec![F::Mask::splat(true); chunks];
+    let fr = run_batch::<F, _>(prog, values, &mut ctxs, &masks);
+    let mut out = Vec::new();
+    for k in 0..chunks {
+        for lane in 0..F::LANES {
+            let read = |loc| fr.read(loc, k).iter().map(|x: &F| x.lane(lane)).collect::<Vec<f64>>();
+            let mut o = Vec::new();
+            if let Some(l) = prog.global_loc(Global::Ci) {
+                o.push(("Ci".to_string(), read(l)));
+            }
+            match prog.global_loc(Global::Oi) {
+                Some(l) => o.push(("Oi".to_string(), read(l))),
+                None => o.push(("Oi".into(), vec![1.0; 3])),
+            }
+            for (i, p) in prog.module.params.iter().enumerate() {
+                if let (true, Some(l)) = (p.output, prog.param_loc(i)) {
+                    o.push((p.name.clone(), read(l)));
+                }
+            }
+            out.push(o);
+        }
+    }
+    release(fr);
+    out
+}
 
 fn as_refs(o: &[(String, Vec<f64>)]) -> Vec<(&str, Vec<f64>)> {
     o.iter().map(|(n, v)| (n.as_str(), v.clone())).collect()

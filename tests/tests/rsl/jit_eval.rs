@@ -3,6 +3,7 @@
 //! program uses derivatives, with its output parameters read back), against its `// expect:`
 //! lines and against the interpreter on the same point.
 
+use crate::rsl_conformance_interp::{param_const, run};
 use anysl_ad::Dual;
 use anysl_core::{PointContext, Shader, ShadingFloat};
 use anysl_jit::{JitOptions, JitShader, PointOutputs};
@@ -11,7 +12,7 @@ use anysl_rsl::ir::Const;
 use anysl_rsl::passes::{optimize, PassOptions};
 use anysl_rsl::CompileOptions;
 use anysl_shaders::{table1_lights, Light};
-use anysl_tests::rsl_harness::{check, grid_globals, param_const, parse_directives, run, Directives};
+use anysl_tests::rsl_harness::{check, grid_globals, parse_directives, Directives};
 use std::path::Path;
 
 fn eval<F: ShadingFloat>(jit: &JitShader, d: &Directives, lights: &[Light]) -> Result<PointOutputs, String> {
@@ -22,7 +23,7 @@ fn eval<F: ShadingFloat>(jit: &JitShader, d: &Directives, lights: &[Light]) -> R
 
 #[test]
 fn conformance_suite_through_the_jit_eval_entry() {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../tests/data/rsl/conformance");
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("data").join("rsl").join("conformance");
     let mut files: Vec<_> = std::fs::read_dir(&dir)
         .expect("conformance dir")
         .filter_map(|e| e.ok().map(|e| e.path()))

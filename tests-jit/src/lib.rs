@@ -1,1 +1,0 @@
-//! No library: the tests are in `tests/jit/`.
