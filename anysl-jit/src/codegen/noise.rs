@@ -213,16 +213,7 @@ impl<'c> Cg<'c, '_> {
             &[x.get_type()],
             &[self.call_intr("llvm.maxnum", &[x.get_type()], &[xf, lo]), hi],
         );
-        let conv = match clamped {
-            BasicValueEnum::FloatValue(f) => {
-                self.b.build_float_to_signed_int(f, self.cx.i32_type(), "").expect("fptosi").into()
-            }
-            BasicValueEnum::VectorValue(v) => {
-                let n = v.get_type().get_size();
-                self.b.build_float_to_signed_int(v, self.cx.i32_type().vec_type(n), "").expect("fptosi").into()
-            }
-            _ => unreachable!("float lanes"),
-        };
+        let conv = self.fptosi(clamped);
         let over = self.fcmp_raw(FloatPredicate::OGE, xf, self.constant_like(x, 2_147_483_648.0));
         let nan = self.fcmp_raw(FloatPredicate::UNO, x, x);
         let v = self.sel_raw(over, self.iconst_like(x, i32::MAX as u32).0, conv);
@@ -235,7 +226,14 @@ impl<'c> Cg<'c, '_> {
     fn lattice_bits(&self, x: BasicValueEnum<'c>) -> I<'c> {
         let top = self.constant_like(x, 2_147_483_648.0);
         let clamped = self.call_intr("llvm.minnum", &[x.get_type()], &[x, self.constant_like(x, 2_147_483_520.0)]);
-        let conv = match clamped {
+        let conv = self.fptosi(clamped);
+        let at_top = self.fcmp_raw(FloatPredicate::OGE, x, top);
+        I(self.sel_raw(at_top, self.iconst_like(x, i32::MIN as u32).0, conv))
+    }
+
+    /// `fptosi` to i32 lanes shaped like `x` (in range: out of it the result is poison).
+    fn fptosi(&self, x: BasicValueEnum<'c>) -> BasicValueEnum<'c> {
+        match x {
             BasicValueEnum::FloatValue(f) => {
                 self.b.build_float_to_signed_int(f, self.cx.i32_type(), "").expect("fptosi").into()
             }
@@ -244,9 +242,7 @@ impl<'c> Cg<'c, '_> {
                 self.b.build_float_to_signed_int(v, self.cx.i32_type().vec_type(n), "").expect("fptosi").into()
             }
             _ => unreachable!("float lanes"),
-        };
-        let at_top = self.fcmp_raw(FloatPredicate::OGE, x, top);
-        I(self.sel_raw(at_top, self.iconst_like(x, i32::MIN as u32).0, conv))
+        }
     }
 
     /// The float constant `c` shaped like `x`.
