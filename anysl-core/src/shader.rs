@@ -6,6 +6,7 @@ use crate::exec::Exec;
 use crate::float::ShadingFloat;
 use crate::globals::SurfaceOutput;
 use crate::light::{Emission, LightData, LightOutput, LightSource};
+use crate::spaces::Spaces;
 use crate::vec::{Color, Vec3};
 use core::fmt;
 
@@ -360,6 +361,15 @@ pub trait SurfaceVisitor {
 pub trait LightShader: Shader {
     /// Evaluates the light for the points `ps` (live lanes in `e`).
     fn light<F: ShadingFloat>(&self, e: &mut Exec<F>, ps: Vec3<F>) -> LightOutput<F>;
+
+    /// [`LightShader::light`] seeing the named spaces `spaces` — a light placed in a scene sees
+    /// its own "shader" space (the space current at its `LightSource`) and the frame's named
+    /// coordinate systems. Lights that name no space need not override it.
+    #[inline(always)]
+    fn light_in<F: ShadingFloat>(&self, e: &mut Exec<F>, ps: Vec3<F>, spaces: &Spaces) -> LightOutput<F> {
+        let _ = spaces;
+        self.light(e, ps)
+    }
 
     /// How this light always emits, when that is known without evaluating it (`None`: it
     /// depends on the evaluation). The light loops use it to skip lights they cannot use —

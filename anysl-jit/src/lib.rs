@@ -412,7 +412,7 @@ pub fn pass_pipeline(level: u32) -> &'static str {
 /// `values`.
 ///
 /// # Errors
-/// When the shader uses something the JIT does not support (light shaders, textures) or LLVM
+/// When the shader uses something the JIT does not support or LLVM
 /// fails.
 pub fn compile(
     module: &Module,

@@ -1,5 +1,5 @@
-//! [`JitShader`]: a JIT-compiled `.sl` surface or displacement shader behind the same
-//! [`SurfaceShader`] / [`DisplacementShader`] boundary as every other shader.
+//! [`JitShader`]: a JIT-compiled `.sl` surface, displacement or light shader behind the same
+//! [`SurfaceShader`] / [`DisplacementShader`] / [`LightShader`] boundary as every other shader.
 
 use crate::abi::JitFloat;
 use crate::abi::{GLOBAL_ORDER, GLOBAL_VALUES};
@@ -11,8 +11,8 @@ use anysl_ad::Dual;
 use anysl_core::points::{PointSet, ShadeOut};
 use anysl_core::prelude::*;
 use anysl_core::shader::{ParamError, ParamValue, ShaderMeta};
-use anysl_core::{LightSource, PointContext};
-use anysl_rsl::back::interp::{InterpShader, Program};
+use anysl_core::{Emission, LightOutput, LightShader, LightSource, PointContext, Spaces};
+use anysl_rsl::back::interp::{InterpShader, LightCtx, Program};
 use anysl_rsl::ir::{Const, Global, Module};
 use anysl_rsl::CompileOptions;
 use anysl_simd::{F32x16, F32x4, F32x8, Pair};
@@ -73,6 +73,8 @@ pub struct JitShader {
     /// `values` as the run-time parameter block that code compiled without specialization
     /// reads ([`crate::codegen::param_block`]).
     param_block: Vec<f32>,
+    /// A light shader's [`LightShader::emission`], found once.
+    emission: Option<Emission>,
 }
 
 impl Clone for JitShader {
@@ -86,6 +88,7 @@ impl Clone for JitShader {
             points: PointsCache::default(),
             interp: self.interp.clone(),
             param_block: self.param_block.clone(),
+            emission: self.emission,
         }
     }
 }
@@ -106,15 +109,17 @@ impl JitShader {
         let interp_module = anysl_rsl::passes::optimize(module.clone(), &anysl_rsl::passes::PassOptions::default());
         let program = Program::new(interp_module).map_err(|e| JitError(e.to_string()))?;
         let param_block = crate::codegen::param_block(&module, &values).0;
+        let interp = InterpShader::new(Arc::new(program));
         Ok(Self {
             param_block,
+            emission: interp.emission(),
             module: Arc::new(module),
             values,
             opts,
             variants: Default::default(),
             eval_variants: Default::default(),
             points: PointsCache::default(),
-            interp: InterpShader::new(Arc::new(program)),
+            interp,
         })
     }
 
@@ -484,6 +489,31 @@ impl JitShader {
         (Vec3::new(rd(6), rd(7), rd(8)), Vec3::new(rd(9), rd(10), rd(11)))
     }
 
+    /// A light shader's run for the points `ps`: its `Cl` and `L` (the first two outputs).
+    fn run_light<F: ShadingFloat, G: JitFloat>(
+        &self,
+        cs: &CompiledShader,
+        e: &Exec<F>,
+        ps: Vec3<F>,
+        spaces: &Spaces,
+    ) -> LightOutput<F> {
+        assert!(crate::abi::output_layout_is_buffer::<G>(), "SurfaceOutput layout differs from the JIT's");
+        let mut ctx = LightCtx::at(ps, spaces);
+        let mut out = std::mem::MaybeUninit::<SurfaceOutput<G>>::uninit();
+        // SAFETY: a light shader's code writes `Cl` and `L`: six values of `G`, `STRIDE` floats
+        // apart, the size and alignment of `SurfaceOutput<G>`.
+        unsafe { self.invoke::<F, LightCtx<'_, F>, G>(cs, &mut ctx, e, out.as_mut_ptr().cast()) };
+        let o = out.as_ptr().cast::<f32>();
+        // SAFETY: the compiled code wrote all six values; F and G are the same type.
+        let rd = |k: usize| cast::<G, F>(unsafe { G::read(o.add(k * G::STRIDE)) });
+        LightOutput {
+            cl: Color::new(rd(0), rd(1), rd(2)),
+            l: Vec3::new(rd(3), rd(4), rd(5)),
+            lit: e.mask(),
+            emission: self.emission.unwrap_or(Emission::Local),
+        }
+    }
+
     /// Calls the compiled code of `cs` on the packet of `ctx` under `e`'s mask.
     ///
     /// # Safety
@@ -600,5 +630,34 @@ impl DisplacementShader for JitShader {
             }
         }
         self.interp.displace(ctx, e)
+    }
+}
+
+impl LightShader for JitShader {
+    fn light<F: ShadingFloat>(&self, e: &mut Exec<F>, ps: Vec3<F>) -> LightOutput<F> {
+        self.light_in(e, ps, Spaces::standard())
+    }
+
+    /// The compiled light for the variant of `F` (`Cl` stays zero outside every `illuminate`
+    /// cone, as in the interpreter); the interpreter for other float types.
+    fn light_in<F: ShadingFloat>(&self, e: &mut Exec<F>, ps: Vec3<F>, spaces: &Spaces) -> LightOutput<F> {
+        if let Some(v) = variant_of::<F>() {
+            if let Ok(cs) = self.variant_ref(v) {
+                return_as_variant!(v, F, |G| self.run_light::<F, G>(cs, e, ps, spaces));
+                unreachable!(
+                    "variant_of::<{}>() named {v:?}, a type of other lanes or size",
+                    core::any::type_name::<F>()
+                );
+            }
+        }
+        self.interp.light_in(e, ps, spaces)
+    }
+
+    fn emission(&self) -> Option<Emission> {
+        self.emission
+    }
+
+    fn category(&self) -> &str {
+        self.interp.category()
     }
 }

@@ -2,9 +2,10 @@
 //! when no lane is left), varying `if`s run arm by arm under their masks, uniform branches as
 //! branches, loops with live, break and continue masks per level, `return` per inlined frame.
 
+use super::value::Val;
 use super::value::{err, R};
 use super::Cg;
-use anysl_rsl::ir::{self, Block, Node, Value};
+use anysl_rsl::ir::{self, Block, Global, Node, Value};
 use inkwell::values::PointerValue;
 
 impl<'c> Cg<'c, '_> {
@@ -138,11 +139,67 @@ impl<'c> Cg<'c, '_> {
             Node::Illuminance { category, position, cone, body } => {
                 self.illuminance(*category, *position, *cone, body)?;
             }
-            Node::Illuminate { .. } | Node::Solar { .. } => {
-                return err("light shaders (illuminate/solar) are not compiled by the JIT yet");
-            }
+            Node::Illuminate { position, cone, body } => self.light_stmt(Some(*position), *cone, body)?,
+            Node::Solar { cone, body } => self.light_stmt(None, *cone, body)?,
         }
         Ok(false)
+    }
+
+    /// A light shader's `illuminate(from [, axis, angle])` (`from` given) or `solar([axis,
+    /// angle])`, as the interpreter runs it: `L = Ps − from` (or the axis; zero without one)
+    /// for the live lanes, then the body for the lanes inside the cone (`Cl` stays as it was
+    /// for the others). `L` also goes to the hidden slot the light's output reads when the
+    /// shader has no `L` variable of its own.
+    fn light_stmt(&mut self, from: Option<Value>, cone: Option<(Value, Value)>, body: &Block) -> R<()> {
+        let ps = match self.func.global_slot(Global::Ps) {
+            Some(s) => match self.load_slot(s) {
+                Val::Num(c) => c,
+                _ => return err("Ps is not a point"),
+            },
+            None => self.read_global(Global::P),
+        };
+        let (l, lit) = match from {
+            Some(from) => {
+                let from = self.nums(from)?;
+                let l: Vec<_> = (0..3).map(|k| self.sub(ps[k], from[k.min(from.len() - 1)])).collect();
+                let lit = match cone {
+                    Some((axis, angle)) => {
+                        let c = self.cone_test(axis, angle)?;
+                        Some(self.cone_test_contains(&c, &l))
+                    }
+                    None => None,
+                };
+                (l, lit)
+            }
+            None => {
+                let axis = match cone {
+                    Some((axis, _)) => self.nums(axis)?,
+                    None => vec![self.fc(0.0); 3],
+                };
+                ((0..3).map(|k| axis[k.min(axis.len() - 1)]).collect(), None)
+            }
+        };
+        let outer = self.st().mask;
+        let m = self.load_mask(outer);
+        for s in [self.func.global_slot(Global::L), self.light_l].into_iter().flatten() {
+            for (c, &v) in l.iter().enumerate() {
+                self.store_comp(s, c, v, Some(m));
+            }
+        }
+        let inside = match lit {
+            Some(lit) => self.mand(m, lit),
+            None => m,
+        };
+        let p = self.new_mask(inside);
+        self.masked_region(p, |cg| cg.block(body))?;
+        // Lanes that left the body (`return`, `break`) are gone; those outside the cone stay.
+        let after = self.load_mask(p);
+        let rest = match lit {
+            Some(lit) => self.mor(after, self.mand(m, self.mnot(lit))),
+            None => after,
+        };
+        self.store_mask(outer, rest);
+        Ok(())
     }
 
     /// Runs `f` with mask pointer `p` when some lane of it is set.

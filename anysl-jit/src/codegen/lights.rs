@@ -23,6 +23,10 @@ use inkwell::types::BasicType;
 use inkwell::values::{IntValue, PointerValue};
 use inkwell::{AddressSpace, FloatPredicate, IntPredicate};
 
+/// A cone prepared for [`Cg::cone_test_contains`]: the axis, `cos²(angle)·|axis|²`, the
+/// no-wider-than-a-hemisphere mask and the admits-everything mask.
+pub(super) type ConeCode<'c> = (Vec<S<'c>>, S<'c>, M<'c>, M<'c>);
+
 /// The sums one loop computes.
 #[derive(Clone, Copy)]
 struct Sums {
@@ -104,6 +108,40 @@ impl<'c> Cg<'c, '_> {
     /// lanes in the cone (`ConeTest`), nothing for no lane, no shadowing — so the body sees
     /// the `L` and `Cl` the renderer's loop would hand it. `break`/`continue` in the body
     /// end the loop or the light for their lanes, as in the body function the renderer calls.
+    /// `ConeTest::new(axis, angle)`: the axis, `cos²(angle)·|axis|²`, whether the cone is no
+    /// wider than a hemisphere, and whether it admits everything (angle ≥ π).
+    pub(super) fn cone_test(
+        &mut self,
+        axis: anysl_rsl::ir::Value,
+        angle: anysl_rsl::ir::Value,
+    ) -> super::value::R<ConeCode<'c>> {
+        let axis = self.nums(axis)?;
+        let angle = self.nums(angle)?[0];
+        let pi = self.fc(core::f64::consts::PI);
+        let a = self.minmax(angle, pi, false);
+        let a = if self.t.lanes > 1 { self.to(a, Repr::V) } else { a };
+        let c = self.rt_call(RtKind::Un, rt::Un::Cos as u32, &[a], 1, false)[0];
+        let c2a2 = self.mul(self.mul(c, c), self.dot(&axis, &axis));
+        let narrow = self.cmp(FloatPredicate::OGE, c, self.fc(0.0));
+        let all = self.cmp(FloatPredicate::OGE, angle, pi);
+        Ok((axis, c2a2, narrow, all))
+    }
+
+    /// `ConeTest::contains(dir)` of a [`Cg::cone_test`]: the lanes whose `dir` lies inside the cone.
+    pub(super) fn cone_test_contains(&self, cone: &ConeCode<'c>, dir: &[S<'c>]) -> M<'c> {
+        let (axis, c2a2, narrow, all) = cone;
+        let d = self.dot(dir, axis);
+        let front = self.cmp(FloatPredicate::OGE, d, self.fc(0.0));
+        let dd = self.mul(d, d);
+        let rhs = self.mul(*c2a2, self.dot(dir, dir));
+        let wide = self.mnot(*narrow);
+        let inside = self.mor(
+            self.mand(front, self.mor(self.cmp(FloatPredicate::OGE, dd, rhs), wide)),
+            self.mand(wide, self.cmp(FloatPredicate::OLE, dd, rhs)),
+        );
+        self.mor(inside, *all)
+    }
+
     pub(super) fn illuminance_over_data(
         &mut self,
         position: anysl_rsl::ir::Value,
@@ -117,18 +155,7 @@ impl<'c> Cg<'c, '_> {
         let ps = self.nums(position)?;
         // `ConeTest::new(axis, angle)`, once for all lights.
         let cone = match cone {
-            Some((axis, angle)) => {
-                let axis = self.nums(axis)?;
-                let angle = self.nums(angle)?[0];
-                let pi = self.fc(core::f64::consts::PI);
-                let a = self.minmax(angle, pi, false);
-                let a = if self.t.lanes > 1 { self.to(a, Repr::V) } else { a };
-                let c = self.rt_call(RtKind::Un, rt::Un::Cos as u32, &[a], 1, false)[0];
-                let c2a2 = self.mul(self.mul(c, c), self.dot(&axis, &axis));
-                let narrow = self.cmp(FloatPredicate::OGE, c, self.fc(0.0));
-                let all = self.cmp(FloatPredicate::OGE, angle, pi);
-                Some((axis, c2a2, narrow, all))
-            }
+            Some((axis, angle)) => Some(self.cone_test(axis, angle)?),
             None => None,
         };
         let outer = self.st().mask;
@@ -213,18 +240,8 @@ impl<'c> Cg<'c, '_> {
             .collect();
         let to_light: Vec<S<'c>> = l.iter().map(|&x| self.neg(x)).collect();
         let mut m = self.mand(m_outer, self.mnot(self.load_mask(brk)));
-        if let Some((axis, c2a2, narrow, all)) = &cone {
-            // `ConeTest::contains`.
-            let d = self.dot(&to_light, axis);
-            let front = self.cmp(FloatPredicate::OGE, d, self.fc(0.0));
-            let dd = self.mul(d, d);
-            let rhs = self.mul(*c2a2, self.dot(&to_light, &to_light));
-            let wide = self.mnot(*narrow);
-            let inside = self.mor(
-                self.mand(front, self.mor(self.cmp(FloatPredicate::OGE, dd, rhs), wide)),
-                self.mand(wide, self.cmp(FloatPredicate::OLE, dd, rhs)),
-            );
-            m = self.mand(m, self.mor(inside, *all));
+        if let Some(cone) = &cone {
+            m = self.mand(m, self.cone_test_contains(cone, &to_light));
         }
         self.store_mask(lmask, m);
         self.store_mask(cont, self.no_lanes());

@@ -145,6 +145,9 @@ pub struct Cg<'c, 'm> {
     /// Light calls made now call the renderer even when the context describes its lights
     /// as data ([`Cg::light_call`]).
     lights_by_renderer: bool,
+    /// A light shader without an `L` variable: the slot (after the IR's) that keeps the `L`
+    /// of its `illuminate`/`solar` statements for the light's output.
+    light_l: Option<SlotId>,
 }
 
 /// Where a light call's normal comes from, as far as the code generator can tell: the same
@@ -211,6 +214,7 @@ impl<'c, 'm> Cg<'c, 'm> {
             slot_stores: vec![std::cell::Cell::new(0); func.slots.len()],
             amb_partner: ambient_partners(func),
             lights_by_renderer: false,
+            light_l: None,
             shapes: HashMap::new(),
             fn_attrs: Vec::new(),
             threaded_fns: 0,

@@ -83,6 +83,24 @@ impl<'c> Cg<'c, '_> {
                 .collect();
             self.slots.push(SlotStore { r, ptrs, is_str });
         }
+        if module.kind == ir::ShaderKind::Light && func.global_slot(Global::L).is_none() {
+            let r = self.full();
+            let ty = self.fty(r);
+            let ptrs = (0..3)
+                .map(|_| {
+                    let p = self.entry_alloca(ty);
+                    let d = (r == Repr::D).then(|| (self.entry_alloca(ty), self.entry_alloca(ty)));
+                    (p, d)
+                })
+                .collect();
+            let sid = SlotId(self.slots.len() as u32);
+            self.slots.push(SlotStore { r, ptrs, is_str: false });
+            self.slot_stores.push(std::cell::Cell::new(0));
+            for k in 0..3 {
+                self.store_comp(sid, k, self.fc(0.0), None);
+            }
+            self.light_l = Some(sid);
+        }
         // Initial values: globals from the buffer, parameters from the instance, others 0.
         for (i, s) in func.slots.iter().enumerate() {
             let sid = SlotId(i as u32);
@@ -90,6 +108,8 @@ impl<'c> Cg<'c, '_> {
                 SlotKind::Global(gl) => {
                     let from = match gl {
                         Global::Oi => Some(Global::Os),
+                        // A light shader runs with `P` = the surface point `Ps`.
+                        Global::Ps => Some(Global::P),
                         g => GLOBAL_ORDER.iter().any(|(x, _)| x == g).then_some(*g),
                     };
                     match from {
@@ -143,16 +163,26 @@ impl<'c> Cg<'c, '_> {
         self.b.build_unconditional_branch(exit_bb).expect("br");
         let _ = after;
         self.b.position_at_end(exit_bb);
-        // Outputs: `Ci`, `Oi`, and for displacement shaders `P`, `N` (the only ones read).
+        // Outputs: `Ci`, `Oi`, and for displacement shaders `P`, `N` (the only ones read); a
+        // light shader's `Cl` and `L` in the places of `Ci` and `Oi`.
         let outputs = if module.kind == ir::ShaderKind::Displacement { 4 } else { 2 };
-        for (gl, off) in abi::OUTPUT_ORDER.into_iter().take(outputs) {
-            let vals = match func.global_slot(gl) {
+        let order: Vec<(Global, usize)> = if module.kind == ir::ShaderKind::Light {
+            vec![(Global::Cl, 0), (Global::L, 3)]
+        } else {
+            abi::OUTPUT_ORDER.into_iter().take(outputs).collect()
+        };
+        for (gl, off) in order {
+            let gslot = match gl {
+                Global::L => func.global_slot(gl).or(self.light_l),
+                _ => func.global_slot(gl),
+            };
+            let vals = match gslot {
                 Some(s) => match self.load_slot(s) {
                     Val::Num(c) => c,
                     _ => continue,
                 },
                 None => match gl {
-                    Global::Ci => vec![self.fc(0.0); 3],
+                    Global::Ci | Global::Cl | Global::L => vec![self.fc(0.0); 3],
                     Global::Oi => self.read_global(Global::Os),
                     _ => self.read_global(gl),
                 },

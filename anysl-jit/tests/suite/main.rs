@@ -8,6 +8,7 @@ mod displacement;
 mod inline_geometry;
 mod inline_math;
 mod light_loops;
+mod light_shaders;
 mod opcount;
 mod points;
 mod runtime;

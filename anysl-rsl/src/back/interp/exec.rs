@@ -319,6 +319,7 @@ fn light_body<F: ShadingFloat, C: ShadingContext<F>>(
     let l_slot = run.p.globals.iter().find(|(g, _)| *g == Global::L).map(|(_, l)| l.off());
     let ps_slot = run.p.globals.iter().find(|(g, _)| *g == Global::Ps).map(|(_, l)| l.off());
     let mut bm = Vec::with_capacity(mask.len());
+    let mut unlit = Vec::with_capacity(mask.len());
     for k in range.clone() {
         let m = mask[k - range.start];
         let ps = ps_slot.map_or(fr.light_ps, |r| fr.vec3(r, k));
@@ -334,9 +335,14 @@ fn light_body<F: ShadingFloat, C: ShadingContext<F>>(
         }
         fr.light_l = Vec3::select(m, l, fr.light_l);
         bm.push(m & lit);
+        unlit.push(m & !lit);
     }
     if bm.iter().any(|m| m.any()) {
         exec_block(fr, run, body, range, &mut bm);
+        // Lanes that left the body (`return`, `break`) are gone; those outside the cone stay.
+        for ((m, b), u) in mask.iter_mut().zip(&bm).zip(&unlit) {
+            *m = *b | *u;
+        }
     }
 }
 
@@ -848,10 +854,20 @@ impl DisplacementShader for InterpShader {
 /// its parameter values); the program's kind decides which shader trait it is used through.
 pub type InterpLight = InterpShader;
 
-/// The context a light (or imager) shader runs in: its globals and the named spaces.
-pub(super) struct LightCtx<'s, F: ShadingFloat> {
+/// The context a light (or imager) shader runs in: its globals and the named spaces. It has
+/// no lights, and `trace` sees nothing.
+pub struct LightCtx<'s, F: ShadingFloat> {
     pub(super) g: Globals<F>,
     pub(super) spaces: &'s Spaces,
+}
+
+impl<'s, F: ShadingFloat> LightCtx<'s, F> {
+    /// The context of a light shader's run for the surface points `ps`: `P` (and `Ps`) = `ps`,
+    /// every other global zero.
+    #[must_use]
+    pub fn at(ps: Vec3<F>, spaces: &'s Spaces) -> Self {
+        Self { g: globals_at(ps), spaces }
+    }
 }
 
 impl<F: ShadingFloat> ShadingContext<F> for LightCtx<'_, F> {
@@ -903,37 +919,10 @@ impl LightShader for InterpShader {
     fn light<F: ShadingFloat>(&self, e: &mut Exec<F>, ps: Vec3<F>) -> LightOutput<F> {
         self.light_in(e, ps, Spaces::standard())
     }
-}
 
-/// Globals with `P` = `p` and every other one zero (the globals of a light shader's run and
-/// of an imager's pixel before its own are set).
-pub(super) fn globals_at<F: ShadingFloat>(p: Vec3<F>) -> Globals<F> {
-    let zero = F::c(0.0);
-    Globals {
-        P: p,
-        N: Vec3::zero(),
-        Ng: Vec3::zero(),
-        I: Vec3::zero(),
-        E: Vec3::zero(),
-        s: zero,
-        t: zero,
-        u: zero,
-        v: zero,
-        du: zero,
-        dv: zero,
-        dPdu: Vec3::zero(),
-        dPdv: Vec3::zero(),
-        Cs: Color::zero(),
-        Os: Color::zero(),
-    }
-}
-
-impl InterpShader {
-    /// [`LightShader::light`] with the named spaces `spaces` (a light placed in a scene sees
-    /// its own "shader" space, the space current where it was declared).
-    pub fn light_in<F: ShadingFloat>(&self, e: &mut Exec<F>, ps: Vec3<F>, spaces: &Spaces) -> LightOutput<F> {
+    fn light_in<F: ShadingFloat>(&self, e: &mut Exec<F>, ps: Vec3<F>, spaces: &Spaces) -> LightOutput<F> {
         let p = &*self.program;
-        let mut ctx = LightCtx { g: globals_at(ps), spaces };
+        let mut ctx = LightCtx::at(ps, spaces);
         let mut fr = take_frame::<F>(p, 1);
         for (i, loc) in p.params.iter().enumerate() {
             if let Some(c) = self.values.get(i) {
@@ -963,5 +952,28 @@ impl InterpShader {
         release(fr);
         let emission = self.emission().unwrap_or(Emission::Local);
         LightOutput { cl, l, lit: e.mask(), emission }
+    }
+}
+
+/// Globals with `P` = `p` and every other one zero (the globals of a light shader's run and
+/// of an imager's pixel before its own are set).
+pub(super) fn globals_at<F: ShadingFloat>(p: Vec3<F>) -> Globals<F> {
+    let zero = F::c(0.0);
+    Globals {
+        P: p,
+        N: Vec3::zero(),
+        Ng: Vec3::zero(),
+        I: Vec3::zero(),
+        E: Vec3::zero(),
+        s: zero,
+        t: zero,
+        u: zero,
+        v: zero,
+        du: zero,
+        dv: zero,
+        dPdu: Vec3::zero(),
+        dPdv: Vec3::zero(),
+        Cs: Color::zero(),
+        Os: Color::zero(),
     }
 }

@@ -18,6 +18,6 @@ mod prepare;
 pub mod texture;
 mod volume;
 
-pub use exec::{release, run_batch, InterpLight, InterpShader};
+pub use exec::{release, run_batch, InterpLight, InterpShader, LightCtx};
 pub use frame::{Frame, Loc};
 pub use prepare::{PrepareError, Program};
