@@ -1,37 +1,44 @@
 //! The lights of a RIB scene: the standard lights compiled ahead of time, and any other `.sl`
-//! light shader found on the shader search path, run by the batched interpreter in its own
+//! light shader found on the shader search path, made by the scene's shader back end (the
+//! batched interpreter, or the JIT, which compiles it per float type) and run in its own
 //! coordinate systems (its "shader" space is the space current at its `LightSource`).
 
 use crate::build::LightCall;
-use crate::shaders::{apply_params, standard_light, ShaderLibrary, ShaderSource};
+use crate::render::Surfaces;
+use crate::shaders::{apply_params, standard_light, ShaderSource};
 use anysl_core::{
-    Emission, Exec, LightData, LightOutput, LightShader, ParamError, ParamType, ParamValue, Shader, ShaderMeta,
-    ShadingFloat, Spaces, Vec3,
+    DisplacementShader, Emission, Exec, LightData, LightOutput, LightShader, ParamError, ParamType, ParamValue,
+    Shader, ShaderMeta, ShadingFloat, Spaces, SurfaceShader, Vec3,
 };
-use anysl_rsl::back::interp::{InterpShader, Program};
+use anysl_rsl::back::interp::InterpShader;
 use anysl_rsl::ir::ShaderKind;
 use anysl_shaders::Light;
-use std::sync::Arc;
 
-/// A light of a RIB scene.
+/// A light of a RIB scene; `S` is the back end's shader type (the interpreter's by default).
 #[derive(Clone, Debug)]
-pub enum SceneLight {
+pub enum SceneLight<S = InterpShader> {
     /// One of the standard lights (`ambientlight`, `distantlight`, `pointlight`,
     /// `spotlight`), compiled ahead of time; light loops may read it as [`LightData`].
     Standard(Light),
-    /// A `.sl` light shader run by the interpreter.
-    Shader(ShaderLight),
+    /// A `.sl` light shader run by the scene's back end.
+    Shader(ShaderLight<S>),
 }
 
-/// A `.sl` light shader instance placed in a scene: the interpreted shader with its parameters
-/// and the named spaces it sees.
+/// A `.sl` light shader instance placed in a scene: the shader with its parameters and the
+/// named spaces it sees.
 #[derive(Clone, Debug)]
-pub struct ShaderLight {
-    shader: InterpShader,
+pub struct ShaderLight<S = InterpShader> {
+    shader: S,
     spaces: Spaces,
 }
 
-impl ShaderLight {
+impl<S> ShaderLight<S> {
+    /// The shader instance (its parameters set).
+    #[must_use]
+    pub fn shader(&self) -> &S {
+        &self.shader
+    }
+
     /// The named spaces the shader sees ("shader" and "object": the space current at its
     /// `LightSource`; the frame's "world", "camera", "screen", "NDC", "raster" and named
     /// coordinate systems).
@@ -41,7 +48,7 @@ impl ShaderLight {
     }
 }
 
-impl Shader for SceneLight {
+impl<S: Shader> Shader for SceneLight<S> {
     fn meta(&self) -> ShaderMeta {
         match self {
             Self::Standard(l) => l.meta(),
@@ -62,7 +69,7 @@ impl Shader for SceneLight {
     }
 }
 
-impl LightShader for SceneLight {
+impl<S: LightShader> LightShader for SceneLight<S> {
     #[inline]
     fn light<F: ShadingFloat>(&self, e: &mut Exec<F>, ps: Vec3<F>) -> LightOutput<F> {
         match self {
@@ -94,34 +101,34 @@ impl LightShader for SceneLight {
 ///
 /// A standard light name that no `.sl` file on the search path overrides is the compiled
 /// standard light ([`standard_light`]). Any other name is a `.sl` light shader found by
-/// `library`, run by the interpreter with `frame_spaces` plus "shader" and "object" = the
-/// transform at the `LightSource`. Point, vector and normal parameters are taken to current
+/// `surfaces`' library and made by its back end, seeing `frame_spaces` plus "shader" and
+/// "object" = the transform at the `LightSource`. Point, vector and normal parameters are taken to current
 /// (world) space as RenderMan does when it binds a shader instance: values from the RIB
 /// parameter list from "shader" space, defaults written in a named space
 /// (`point "shader" (0, 0, 0)`) from that space; defaults without a space are in current space.
 ///
 /// # Errors
 /// The shader is not found, does not compile, or is not a light shader.
-pub fn scene_light(
+pub fn scene_light<S: SurfaceShader + DisplacementShader + LightShader + Clone>(
     call: &LightCall,
-    library: &mut ShaderLibrary,
+    surfaces: &mut Surfaces<S>,
     frame_spaces: &Spaces,
-) -> Result<(SceneLight, Vec<String>), String> {
+) -> Result<(SceneLight<S>, Vec<String>), String> {
     let name = call.shader.name.as_str();
-    if Light::by_name(name).is_some() && matches!(library.find(name), Ok(ShaderSource::Builtin(_))) {
+    if Light::by_name(name).is_some() && matches!(surfaces.library.find(name), Ok(ShaderSource::Builtin(_))) {
         let (light, warnings) = standard_light(call)?;
         return Ok((SceneLight::Standard(light), warnings));
     }
-    let module = library.module(name)?;
+    let module = surfaces.library.module(name)?;
     if module.kind != ShaderKind::Light {
         return Err(format!(
             "shader \"{name}\" is a {} shader; LightSource needs a light shader",
             format!("{:?}", module.kind).to_lowercase()
         ));
     }
-    let module = anysl_rsl::passes::optimize(module, &anysl_rsl::passes::PassOptions::default());
-    let program = Program::new(module).map_err(|e| format!("light shader \"{name}\": {e}"))?;
-    let mut shader = InterpShader::new(Arc::new(program));
+    // The parameters' declared spaces (`point "shader" (0, 0, 0)`).
+    let decl_spaces: Vec<Option<String>> = module.params.iter().map(|p| p.space.clone()).collect();
+    let mut shader = surfaces.instance(name).map_err(|e| format!("light {e}"))?;
     let warnings = apply_params(&mut shader, &call.shader);
 
     let mut spaces = frame_spaces.clone();
@@ -131,15 +138,14 @@ pub fn scene_light(
 
     let given = |n: &str| call.shader.params.params.iter().any(|p| p.name == n);
     let meta = shader.meta();
-    let program = Arc::clone(&shader.program);
-    for (info, decl) in meta.params.iter().zip(&program.module.params) {
+    for (info, decl_space) in meta.params.iter().zip(&decl_spaces) {
         let kind = match info.ty {
             ParamType::Point => Kind::Point,
             ParamType::Vector => Kind::Vector,
             ParamType::Normal => Kind::Normal,
             _ => continue,
         };
-        let space = if given(&info.name) { Some("shader") } else { decl.space.as_deref() };
+        let space = if given(&info.name) { Some("shader") } else { decl_space.as_deref() };
         let Some(space) = space.filter(|s| *s != "current") else { continue };
         let (to, from) = (spaces.to_current_f64(space), spaces.from_current_f64(space));
         if let Some(v) = shader.param(&info.name) {

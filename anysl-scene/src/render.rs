@@ -23,7 +23,7 @@ use crate::film::{reconstruct, SampleWindow};
 use crate::lights::{scene_light, SceneLight};
 use crate::shaders::{apply_params, ShaderLibrary};
 use crate::surface::{SceneSurface, Volumes};
-use anysl_core::{DisplacementShader, Matrix4, Spaces, SurfaceShader};
+use anysl_core::{DisplacementShader, LightShader, Matrix4, Spaces, SurfaceShader};
 use anysl_renderers::Projection;
 use anysl_renderers::{Camera, Image, Scene};
 use anysl_rsl::back::interp::{InterpShader, Program};
@@ -44,7 +44,7 @@ pub struct Surfaces<S> {
     kept: Vec<(ShaderCall, S)>,
 }
 
-impl<S: SurfaceShader + DisplacementShader + Clone> Surfaces<S> {
+impl<S: SurfaceShader + DisplacementShader + LightShader + Clone> Surfaces<S> {
     /// Shaders made by `make` from each shader's compiled module.
     pub fn new(library: ShaderLibrary, make: impl FnMut(anysl_rsl::ir::Module) -> Result<S, String> + 'static) -> Self {
         Self { library, make: Box::new(make), cache: HashMap::new(), uses_spaces: HashMap::new(), kept: Vec::new() }
@@ -118,7 +118,7 @@ impl Surfaces<InterpShader> {
 /// them.
 pub struct FrameScene<S> {
     /// The renderer scene; its camera renders one pixel per film sample.
-    pub scene: Scene<SceneSurface<S>, SceneLight>,
+    pub scene: Scene<SceneSurface<S>, SceneLight<S>>,
     /// The samples' window.
     pub window: SampleWindow,
     /// Warnings (parameters that do not fit, unsupported lights, shaders left out).
@@ -133,7 +133,7 @@ pub struct FrameScene<S> {
 /// A surface shader that cannot be found or compiled, a light shader that is found but does not
 /// compile or is not a light shader, or inconsistent geometry. (A light shader that is not
 /// found is left out with a warning.)
-pub fn frame_scene<S: SurfaceShader + DisplacementShader + Clone>(
+pub fn frame_scene<S: SurfaceShader + DisplacementShader + LightShader + Clone>(
     frame: &FrameDesc,
     surfaces: &mut Surfaces<S>,
 ) -> Result<FrameScene<S>, String> {
@@ -184,7 +184,7 @@ pub fn frame_scene<S: SurfaceShader + DisplacementShader + Clone>(
             continue;
         }
         let spaces = spaces.get_or_insert_with(|| frame_spaces(frame));
-        let (light, w) = scene_light(call, &mut surfaces.library, spaces)?;
+        let (light, w) = scene_light(call, surfaces, spaces)?;
         warnings.extend(w);
         light_of.push(Some(lights.len()));
         lights.push(light);

@@ -186,7 +186,10 @@ pub struct JitBenchRow {
     pub shader: String,
     /// `jit-f32`, `jit-x4`, `jit-x8`, `jit-x16`, `aot-f32`, `aot-f32x8`, `interp`, `jit-x8-points`
     /// (the points entry, `JitShader::shade_points`); `jit-dual-x8`, `jit-dual-x8-displacement`,
-    /// `jit-dual-x8-displaced` (a displacement run before the surface, and each alone).
+    /// `jit-dual-x8-displaced` (a displacement run before the surface, and each alone);
+    /// `jit-x8-sl-lights`, `jit-x8-interp-lights` (the lights as `.sl` light shaders —
+    /// `shaders/rsl/<light>.sl` with the same parameters — compiled by the JIT, or run by the
+    /// interpreter, instead of the compiled lights; their compile time in `compile_ms`).
     pub backend: String,
     /// Median cold compile time, parse → machine code (0 for aot).
     pub compile_ms: f64,
@@ -359,6 +362,25 @@ fn displaced_rows(
         .collect())
 }
 
+/// The lights `lights` as `.sl` light shaders (`shaders/rsl/<light>.sl`, the same
+/// parameters) with their 8-lane code compiled, and the milliseconds that took.
+fn sl_lights(lights: &[Light]) -> Result<(Vec<JitShader>, f64), String> {
+    let t = Instant::now();
+    let mut out = Vec::with_capacity(lights.len());
+    for l in lights {
+        let file = rsl_dir().join(format!("{}.sl", l.name()));
+        let mut s =
+            JitShader::from_file(&file, &include_dirs(&file), JitOptions::default()).map_err(|e| e.to_string())?;
+        for p in l.meta().params {
+            let v = l.param(&p.name).ok_or_else(|| format!("{}: no parameter {}", l.name(), p.name))?;
+            s.set_param(&p.name, &v).map_err(|e| format!("{}.sl: {e}", l.name()))?;
+        }
+        s.variant(Variant::X8).map_err(|e| format!("{}.sl: {e}", l.name()))?;
+        out.push(s);
+    }
+    Ok((out, t.elapsed().as_secs_f64() * 1e3))
+}
+
 /// Runs `anysl bench jit`.
 pub fn bench(opts: &JitBenchOpts) -> Result<Vec<JitBenchRow>, String> {
     let names: Vec<String> = if opts.shaders.is_empty() {
@@ -367,6 +389,8 @@ pub fn bench(opts: &JitBenchOpts) -> Result<Vec<JitBenchRow>, String> {
         opts.shaders.clone()
     };
     let lights = table1_lights();
+    let (jit_lights, jit_lights_ms) = sl_lights(&lights)?;
+    let interp_lights: Vec<InterpShader> = jit_lights.iter().map(|l| l.interp().clone()).collect();
     let set = PointSet::random(opts.points, 0x5eed_2010);
     let mut rows = Vec::new();
     println!(
@@ -413,6 +437,17 @@ pub fn bench(opts: &JitBenchOpts) -> Result<Vec<JitBenchRow>, String> {
             ("aot-f32", 0.0, Box::new(|o| shade_points::<f32, _, Light>(&aot, &lights, &set, o))),
             ("aot-f32x8", 0.0, Box::new(|o| shade_points::<F32x8, _, Light>(&aot, &lights, &set, o))),
             ("interp", interp_ms, Box::new(|o| shade_points::<F32x8, _, Light>(&interp, &lights, &set, o))),
+            // The same lights as `.sl` light shaders, compiled or interpreted.
+            (
+                "jit-x8-sl-lights",
+                jit_lights_ms,
+                Box::new(|o| shade_points::<F32x8, _, JitShader>(&jit, &jit_lights, &set, o)),
+            ),
+            (
+                "jit-x8-interp-lights",
+                0.0,
+                Box::new(|o| shade_points::<F32x8, _, InterpShader>(&jit, &interp_lights, &set, o)),
+            ),
             // The loop over the point set compiled with the shader (`JitShader::shade_points`).
             (
                 "jit-x8-points",
@@ -468,6 +503,13 @@ pub fn print_table(rows: &[JitBenchRow]) {
         let mean = ratios.iter().sum::<f64>() / ratios.len() as f64;
         println!("jit-x8 / aot-f32x8 over {} shaders: mean {mean:.2}x", ratios.len());
     }
+    for b in ["jit-x8-sl-lights", "jit-x8-interp-lights"] {
+        let r = backend_ratios(rows, b, "aot-f32x8");
+        if !r.is_empty() {
+            let mean = r.iter().sum::<f64>() / r.len() as f64;
+            println!("{b} / aot-f32x8 over {} shaders: mean {mean:.2}x", r.len());
+        }
+    }
     let displaced = displaced_ratios(rows);
     if !displaced.is_empty() {
         let list: Vec<String> = displaced.iter().map(|(s, r)| format!("{s} {r:.2}x")).collect();
@@ -477,6 +519,18 @@ pub fn print_table(rows: &[JitBenchRow]) {
             list.join(", ")
         );
     }
+}
+
+/// Per shader that has both rows: the throughput of backend `b` over that of `base`.
+#[must_use]
+pub fn backend_ratios(rows: &[JitBenchRow], b: &str, base: &str) -> Vec<f64> {
+    rows.iter()
+        .filter(|r| r.backend == b)
+        .filter_map(|r| {
+            let x = rows.iter().find(|x| x.shader == r.shader && x.backend == base)?;
+            Some(r.points_per_s / x.points_per_s)
+        })
+        .collect()
 }
 
 /// Per shader: the time of the displacement and the surface shaded together over the sum of

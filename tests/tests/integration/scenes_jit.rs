@@ -1,6 +1,7 @@
 //! RIB scenes with their shaders compiled by the JIT: a displacement shader runs compiled
 //! before the compiled surface (the same back end for both), gives the bump normal a finite
-//! difference predicts, and every `scenes/*.rib` gives the interpreter's picture.
+//! difference predicts; a `.sl` light shader runs compiled in every renderer; and every
+//! `scenes/*.rib` gives the interpreter's picture.
 
 use anysl_jit::{JitOptions, JitShader};
 use anysl_renderers::{render_packet, render_scalar, RenderOptions};
@@ -31,7 +32,7 @@ fn jit_surfaces(dirs: Vec<PathBuf>) -> Surfaces<JitShader> {
 /// Renders `frame` with `surfaces` in the packet (8 lanes) or scalar renderer.
 fn render<S>(frame: &FrameDesc, surfaces: &mut Surfaces<S>, packet: bool) -> Vec<[f32; 4]>
 where
-    S: anysl_core::SurfaceShader + anysl_core::DisplacementShader + Clone,
+    S: anysl_core::SurfaceShader + anysl_core::DisplacementShader + anysl_core::LightShader + Clone,
 {
     let fs = frame_scene(frame, surfaces).unwrap_or_else(|e| panic!("{e}"));
     assert!(fs.warnings.is_empty(), "{:?}", fs.warnings);
@@ -129,4 +130,39 @@ fn every_scene_renders_through_the_jit_as_through_the_interpreter() {
             assert!(p >= 40.0, "{name}: JIT against interpreter {p:.1} dB");
         }
     }
+}
+
+#[test]
+fn a_sl_light_shader_runs_compiled_in_the_scene() {
+    // gobo.sl: a light in its own "shader" space (`transform("shader", Ps)` through the host).
+    let scenes = repo().join("scenes");
+    let text = std::fs::read_to_string(scenes.join("gobo.rib")).expect("gobo.rib");
+    let frame = &frames("gobo.rib", &text, Some(40))[0];
+    let mut jit = jit_surfaces(vec![scenes.clone()]);
+    let mut interp = Surfaces::interpreter(ShaderLibrary::new(vec![scenes], Vec::new()));
+    for packet in [false, true] {
+        let a = render(frame, &mut jit, packet);
+        let b = render(frame, &mut interp, packet);
+        let p = psnr(&a, &b);
+        assert!(p >= 50.0, "packet {packet}: JIT against interpreter {p:.1} dB");
+        assert!(a.iter().any(|px| px[0] > 0.05), "packet {packet}: the gobo lights nothing");
+    }
+    let fs = frame_scene(frame, &mut jit).expect("scene");
+    let opts = RenderOptions { threads: 1, ..RenderOptions::default() };
+    let _ = render_scalar(&fs.scene, &opts);
+    let _ = render_packet::<F32x8, _, _>(&fs.scene, &opts);
+    let compiled: Vec<_> = fs
+        .scene
+        .lights
+        .iter()
+        .filter_map(|l| match l {
+            anysl_scene::lights::SceneLight::Shader(s) => Some(s.shader().compiled()),
+            anysl_scene::lights::SceneLight::Standard(_) => None,
+        })
+        .collect();
+    assert_eq!(compiled.len(), 1, "one .sl light in gobo.rib");
+    assert!(
+        compiled[0].contains(&anysl_jit::Variant::F32) && compiled[0].contains(&anysl_jit::Variant::X8),
+        "{compiled:?}"
+    );
 }
