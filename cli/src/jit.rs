@@ -189,7 +189,9 @@ pub struct JitBenchRow {
     /// `jit-dual-x8-displaced` (a displacement run before the surface, and each alone);
     /// `jit-x8-sl-lights`, `jit-x8-interp-lights` (the lights as `.sl` light shaders —
     /// `shaders/rsl/<light>.sl` with the same parameters — compiled by the JIT, or run by the
-    /// interpreter, instead of the compiled lights; their compile time in `compile_ms`).
+    /// interpreter, instead of the compiled lights; their compile time in `compile_ms`);
+    /// `jit-x8-host-lights` (the compiled lights, called by the renderer's light loop instead
+    /// of described as data: the cost of that loop alone).
     pub backend: String,
     /// Median cold compile time, parse → machine code (0 for aot).
     pub compile_ms: f64,
@@ -362,6 +364,31 @@ fn displaced_rows(
         .collect())
 }
 
+/// A light the context cannot describe as data: light loops call it through the renderer.
+#[derive(Clone)]
+struct Opaque(Light);
+
+impl Shader for Opaque {
+    fn meta(&self) -> ShaderMeta {
+        self.0.meta()
+    }
+    fn param(&self, name: &str) -> Option<ParamValue> {
+        self.0.param(name)
+    }
+    fn set_param(&mut self, name: &str, value: &ParamValue) -> Result<(), ParamError> {
+        self.0.set_param(name, value)
+    }
+}
+
+impl LightShader for Opaque {
+    fn light<F: ShadingFloat>(&self, e: &mut Exec<F>, ps: Vec3<F>) -> LightOutput<F> {
+        self.0.light(e, ps)
+    }
+    fn emission(&self) -> Option<Emission> {
+        self.0.emission()
+    }
+}
+
 /// The lights `lights` as `.sl` light shaders (`shaders/rsl/<light>.sl`, the same
 /// parameters) with their 8-lane code compiled, and the milliseconds that took.
 fn sl_lights(lights: &[Light]) -> Result<(Vec<JitShader>, f64), String> {
@@ -391,6 +418,7 @@ pub fn bench(opts: &JitBenchOpts) -> Result<Vec<JitBenchRow>, String> {
     let lights = table1_lights();
     let (jit_lights, jit_lights_ms) = sl_lights(&lights)?;
     let interp_lights: Vec<InterpShader> = jit_lights.iter().map(|l| l.interp().clone()).collect();
+    let opaque_lights: Vec<Opaque> = lights.iter().cloned().map(Opaque).collect();
     let set = PointSet::random(opts.points, 0x5eed_2010);
     let mut rows = Vec::new();
     println!(
@@ -442,6 +470,11 @@ pub fn bench(opts: &JitBenchOpts) -> Result<Vec<JitBenchRow>, String> {
                 "jit-x8-sl-lights",
                 jit_lights_ms,
                 Box::new(|o| shade_points::<F32x8, _, JitShader>(&jit, &jit_lights, &set, o)),
+            ),
+            (
+                "jit-x8-host-lights",
+                0.0,
+                Box::new(|o| shade_points::<F32x8, _, Opaque>(&jit, &opaque_lights, &set, o)),
             ),
             (
                 "jit-x8-interp-lights",
@@ -503,7 +536,7 @@ pub fn print_table(rows: &[JitBenchRow]) {
         let mean = ratios.iter().sum::<f64>() / ratios.len() as f64;
         println!("jit-x8 / aot-f32x8 over {} shaders: mean {mean:.2}x", ratios.len());
     }
-    for b in ["jit-x8-sl-lights", "jit-x8-interp-lights"] {
+    for b in ["jit-x8-sl-lights", "jit-x8-host-lights", "jit-x8-interp-lights"] {
         let r = backend_ratios(rows, b, "aot-f32x8");
         if !r.is_empty() {
             let mean = r.iter().sum::<f64>() / r.len() as f64;
