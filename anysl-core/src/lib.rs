@@ -44,5 +44,5 @@ pub use shader::{
     DisplacementShader, ImagerPixel, ImagerShader, LightShader, ParamError, ParamField, ParamInfo, ParamType,
     ParamValue, Shader, ShaderKind, ShaderMeta, Storage, SurfaceShader, SurfaceVisitor, VolumeShader,
 };
-pub use spaces::{Spaces, STANDARD_SPACES};
+pub use spaces::{Spaces, DEPTH_SPACE, STANDARD_SPACES};
 pub use vec::{Color, Matrix4, Vec3};

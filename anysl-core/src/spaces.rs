@@ -26,6 +26,12 @@ use std::sync::{Arc, Mutex};
 pub const STANDARD_SPACES: &[&str] =
     &["current", "object", "shader", "world", "camera", "screen", "raster", "NDC", "eye"];
 
+/// The space whose `z` is RSL `depth()`: camera-space depth mapped to 0 at the near and 1 at
+/// the far clipping plane (0 everywhere for a far plane at infinity). The front end lowers
+/// `depth(p)` to `zcomp(transform("__depth", p))`; a renderer that knows its camera puts the
+/// space in its table; without it (no camera) `depth(p)` is the `z` of `p` in current space.
+pub const DEPTH_SPACE: &str = "__depth";
+
 /// One named space: its matrix to `current` and back.
 #[derive(Clone, Debug, PartialEq)]
 struct Entry {
@@ -50,6 +56,12 @@ pub struct Spaces {
 static STANDARD: Spaces = Spaces { entries: None };
 static WARNED: Mutex<BTreeSet<String>> = Mutex::new(BTreeSet::new());
 
+/// The inverse of a row-by-row matrix (zero when it is singular).
+fn inverse_rows(m: [f64; 16]) -> [f64; 16] {
+    let inv = Matrix4::<f64>::from_array(m).inverse();
+    core::array::from_fn(|i| inv.m[i / 4][i % 4])
+}
+
 const IDENTITY: [f64; 16] = [1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0];
 
 impl Spaces {
@@ -73,14 +85,24 @@ impl Spaces {
 
     /// Adds (or replaces) space `name` with matrix `to_current` (see [`Spaces::new`]).
     pub fn insert(&mut self, name: &str, to_current: [f64; 16]) {
-        let inv = Matrix4::<f64>::from_array(to_current).inverse();
-        let from_current = core::array::from_fn(|i| inv.m[i / 4][i % 4]);
-        let e = Entry { name: name.to_string(), to_current, from_current };
+        let from_current = inverse_rows(to_current);
+        self.put(Entry { name: name.to_string(), to_current, from_current });
+    }
+
+    fn put(&mut self, e: Entry) {
         let entries = Arc::make_mut(self.entries.get_or_insert_with(Arc::default));
-        match entries.iter_mut().find(|x| x.name == name) {
+        match entries.iter_mut().find(|x| x.name == e.name) {
             Some(x) => *x = e,
             None => entries.push(e),
         }
+    }
+
+    /// Adds (or replaces) space `name` given by its matrix *from* current (row vectors, row by
+    /// row); the matrix to current is its inverse (zero when it is singular, as a depth space
+    /// with the far plane at infinity is).
+    pub fn insert_from_current(&mut self, name: &str, from_current: [f64; 16]) {
+        let to_current = inverse_rows(from_current);
+        self.put(Entry { name: name.to_string(), to_current, from_current });
     }
 
     /// Whether the table holds nothing (every standard name is `current`).
@@ -104,7 +126,7 @@ impl Spaces {
             return None;
         }
         let e = self.entries().iter().find(|e| e.name == name);
-        if e.is_none() && !STANDARD_SPACES.contains(&name) {
+        if e.is_none() && !STANDARD_SPACES.contains(&name) && name != DEPTH_SPACE {
             warn_unknown(name);
         }
         e

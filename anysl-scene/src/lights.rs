@@ -4,11 +4,10 @@
 //! coordinate systems (its "shader" space is the space current at its `LightSource`).
 
 use crate::build::LightCall;
-use crate::render::Surfaces;
-use crate::shaders::{apply_params, standard_light, ShaderSource};
+use crate::shaders::{apply_params, standard_light, ShaderLibrary, ShaderSource};
 use anysl_core::{
-    DisplacementShader, Emission, Exec, LightData, LightOutput, LightShader, ParamError, ParamType, ParamValue,
-    Shader, ShaderMeta, ShadingFloat, Spaces, SurfaceShader, Vec3,
+    Emission, Exec, LightData, LightOutput, LightShader, ParamError, ParamType, ParamValue, Shader, ShaderMeta,
+    ShadingFloat, Spaces, Vec3,
 };
 use anysl_rsl::back::interp::InterpShader;
 use anysl_rsl::ir::ShaderKind;
@@ -97,11 +96,23 @@ impl<S: LightShader> LightShader for SceneLight<S> {
     }
 }
 
+/// Where the shader of a `.sl` light comes from: the library that finds it and the back end
+/// that makes an instance (`anysl_scene::render::Surfaces`).
+pub trait LightMaker<S> {
+    /// The shader library.
+    fn library(&mut self) -> &mut ShaderLibrary;
+    /// A fresh instance of shader `name` with its defaults.
+    ///
+    /// # Errors
+    /// The shader cannot be found or made.
+    fn instance(&mut self, name: &str) -> Result<S, String>;
+}
+
 /// The light of `call`, its parameters set (with one warning per parameter that does not fit).
 ///
 /// A standard light name that no `.sl` file on the search path overrides is the compiled
 /// standard light ([`standard_light`]). Any other name is a `.sl` light shader found by
-/// `surfaces`' library and made by its back end, seeing `frame_spaces` plus "shader" and
+/// `maker`'s library and made by its back end, seeing `frame_spaces` plus "shader" and
 /// "object" = the transform at the `LightSource`. Point, vector and normal parameters are taken to current
 /// (world) space as RenderMan does when it binds a shader instance: values from the RIB
 /// parameter list from "shader" space, defaults written in a named space
@@ -109,17 +120,17 @@ impl<S: LightShader> LightShader for SceneLight<S> {
 ///
 /// # Errors
 /// The shader is not found, does not compile, or is not a light shader.
-pub fn scene_light<S: SurfaceShader + DisplacementShader + LightShader + Clone>(
+pub fn scene_light<S: LightShader>(
     call: &LightCall,
-    surfaces: &mut Surfaces<S>,
+    maker: &mut impl LightMaker<S>,
     frame_spaces: &Spaces,
 ) -> Result<(SceneLight<S>, Vec<String>), String> {
     let name = call.shader.name.as_str();
-    if Light::by_name(name).is_some() && matches!(surfaces.library.find(name), Ok(ShaderSource::Builtin(_))) {
+    if Light::by_name(name).is_some() && matches!(maker.library().find(name), Ok(ShaderSource::Builtin(_))) {
         let (light, warnings) = standard_light(call)?;
         return Ok((SceneLight::Standard(light), warnings));
     }
-    let module = surfaces.library.module(name)?;
+    let module = maker.library().module(name)?;
     if module.kind != ShaderKind::Light {
         return Err(format!(
             "shader \"{name}\" is a {} shader; LightSource needs a light shader",
@@ -128,7 +139,7 @@ pub fn scene_light<S: SurfaceShader + DisplacementShader + LightShader + Clone>(
     }
     // The parameters' declared spaces (`point "shader" (0, 0, 0)`).
     let decl_spaces: Vec<Option<String>> = module.params.iter().map(|p| p.space.clone()).collect();
-    let mut shader = surfaces.instance(name).map_err(|e| format!("light {e}"))?;
+    let mut shader = maker.instance(name).map_err(|e| format!("light {e}"))?;
     let warnings = apply_params(&mut shader, &call.shader);
 
     let mut spaces = frame_spaces.clone();

@@ -20,7 +20,7 @@
 
 use crate::build::{Film, FrameDesc, ShaderCall};
 use crate::film::{reconstruct, SampleWindow};
-use crate::lights::{scene_light, SceneLight};
+use crate::lights::{scene_light, LightMaker, SceneLight};
 use crate::shaders::{apply_params, ShaderLibrary};
 use crate::surface::{SceneSurface, Volumes};
 use anysl_core::{DisplacementShader, LightShader, Matrix4, Spaces, SurfaceShader};
@@ -100,6 +100,15 @@ impl<S: SurfaceShader + DisplacementShader + LightShader + Clone> Surfaces<S> {
         let shader = (self.make)(module).map_err(|e| format!("shader \"{name}\": {e}"))?;
         self.cache.insert(name.to_string(), shader.clone());
         Ok(shader)
+    }
+}
+
+impl<S: SurfaceShader + DisplacementShader + LightShader + Clone> LightMaker<S> for Surfaces<S> {
+    fn library(&mut self) -> &mut ShaderLibrary {
+        &mut self.library
+    }
+    fn instance(&mut self, name: &str) -> Result<S, String> {
+        Surfaces::instance(self, name)
     }
 }
 
@@ -378,6 +387,11 @@ pub fn frame_spaces(frame: &FrameDesc) -> Spaces {
         ("NDC", rows(w2n.inverse())),
         ("raster", rows(w2r.inverse())),
     ]);
+    // `depth()`: camera z taken to 0 at the near and 1 at the far clipping plane.
+    let (n, f) = (f64::from(cam.clipping[0]), f64::from(cam.clipping[1]));
+    let k = if f.is_finite() && f > n { 1.0 / (f - n) } else { 0.0 };
+    let c2d = Matrix4::from_array([1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, k, 0.0, 0.0, 0.0, -n * k, 1.0]);
+    t.insert_from_current(anysl_core::DEPTH_SPACE, rows(w2c * c2d));
     for (name, m) in &frame.coordinate_systems {
         t.insert(name, rows(rsl(m.as_dmat4())));
     }

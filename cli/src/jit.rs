@@ -471,11 +471,7 @@ pub fn bench(opts: &JitBenchOpts) -> Result<Vec<JitBenchRow>, String> {
                 jit_lights_ms,
                 Box::new(|o| shade_points::<F32x8, _, JitShader>(&jit, &jit_lights, &set, o)),
             ),
-            (
-                "jit-x8-host-lights",
-                0.0,
-                Box::new(|o| shade_points::<F32x8, _, Opaque>(&jit, &opaque_lights, &set, o)),
-            ),
+            ("jit-x8-host-lights", 0.0, Box::new(|o| shade_points::<F32x8, _, Opaque>(&jit, &opaque_lights, &set, o))),
             (
                 "jit-x8-interp-lights",
                 0.0,

@@ -470,6 +470,7 @@ impl<'c> Cg<'c, '_> {
             | Builtin::Clamp
             | Builtin::Mix
             | Builtin::SmoothStep => return err(format!("`{builtin}` with {n} arguments")),
+            Builtin::Depth => return err("`depth` reached the back end: the front end lowers it to a transform"),
             // Strings are compile-time values in the JIT, and it has no texture host call.
             Builtin::Format | Builtin::Texture | Builtin::Environment | Builtin::Shadow => {
                 return err(format!("built-in `{builtin}` is not supported by the JIT"))
@@ -485,7 +486,6 @@ impl<'c> Cg<'c, '_> {
             | Builtin::RendererInfo
             | Builtin::TextureInfo => Val::Num(vec![self.fc(0.0)]),
             Builtin::ShaderName => Val::Str(vec![String::new()]),
-            Builtin::Depth => Val::Num(vec![self.read_global(Global::P)[2]]),
         };
         // Outputs not produced above keep their values.
         let mut all = vec![res];

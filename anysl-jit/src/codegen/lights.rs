@@ -101,13 +101,6 @@ impl<'c> Cg<'c, '_> {
         (lights, n)
     }
 
-    /// `illuminance(position [, axis, angle]) { body }` over the `n` lights at `lights`, the
-    /// body compiled inline: [`anysl_core::run_illuminance`] with each light evaluated as
-    /// [`LightData::light`] does — ambient lights skipped, a point light's `L = position - pos`
-    /// with its falloff, a distant light's `L = pos`, `L` reversed to point at the light, the
-    /// lanes in the cone (`ConeTest`), nothing for no lane, no shadowing — so the body sees
-    /// the `L` and `Cl` the renderer's loop would hand it. `break`/`continue` in the body
-    /// end the loop or the light for their lanes, as in the body function the renderer calls.
     /// `ConeTest::new(axis, angle)`: the axis, `cos²(angle)·|axis|²`, whether the cone is no
     /// wider than a hemisphere, and whether it admits everything (angle ≥ π).
     pub(super) fn cone_test(
@@ -142,6 +135,13 @@ impl<'c> Cg<'c, '_> {
         self.mor(inside, *all)
     }
 
+    /// `illuminance(position [, axis, angle]) { body }` over the `n` lights at `lights`, the
+    /// body compiled inline: [`anysl_core::run_illuminance`] with each light evaluated as
+    /// [`LightData::light`] does — ambient lights skipped, a point light's `L = position - pos`
+    /// with its falloff, a distant light's `L = pos`, `L` reversed to point at the light, the
+    /// lanes in the cone (`ConeTest`), nothing for no lane, no shadowing — so the body sees
+    /// the `L` and `Cl` the renderer's loop would hand it. `break`/`continue` in the body
+    /// end the loop or the light for their lanes, as in the body function the renderer calls.
     pub(super) fn illuminance_over_data(
         &mut self,
         position: anysl_rsl::ir::Value,

@@ -166,3 +166,33 @@ fn a_sl_light_shader_runs_compiled_in_the_scene() {
         "{compiled:?}"
     );
 }
+
+#[test]
+fn depth_is_zero_at_the_near_and_one_at_the_far_clipping_plane() {
+    let dir = std::env::temp_dir().join(format!("anysl-tests-depth-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    std::fs::write(
+        dir.join("showdepth.sl"),
+        "surface showdepth() { Ci = color (depth(P), depth(P + vector (0, 0, 2.5)), depth(point \"camera\" (0, 0, 2))); Oi = 1; }\n",
+    )
+    .expect("write shader");
+    // The camera looks down +z; the plane lies at camera z = 7, moved by a world transform
+    // (so "current" is not camera space); clipping 2 … 12: depth (7 − 2) / 10 = 0.5.
+    let rib = "Format 8 8 1 PixelSamples 1 1 PixelFilter \"box\" 1 1 Clipping 2 12\n\
+               Projection \"perspective\" \"fov\" 40 Translate 0 0 3\n\
+               WorldBegin Surface \"showdepth\" Translate 0 0 4\n\
+               Polygon \"P\" [-20 -20 0 20 -20 0 20 20 0 -20 20 0] WorldEnd";
+    let frame = &frames("depth.rib", rib, None)[0];
+    let mut jit = jit_surfaces(vec![dir.clone()]);
+    let mut interp = Surfaces::interpreter(ShaderLibrary::new(vec![dir], Vec::new()));
+    for packet in [false, true] {
+        for (what, px) in [("jit", render(frame, &mut jit, packet)), ("interp", render(frame, &mut interp, packet))] {
+            for p in &px {
+                let want = [0.5, 0.75, 0.0];
+                for c in 0..3 {
+                    assert!((p[c] - want[c]).abs() < 1e-5, "{what}, packet {packet}: {p:?}, expected {want:?}");
+                }
+            }
+        }
+    }
+}

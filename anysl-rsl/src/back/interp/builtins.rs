@@ -140,7 +140,6 @@ pub enum Bi {
     /// A constant result of this width (1 or 3): the answer of a scene query outside a scene.
     Fill(u32, u32),
     ShaderName,
-    Depth,
     FilteredPulse,
 }
 
@@ -299,9 +298,9 @@ pub fn resolve(
         Builtin::IndirectDiffuse | Builtin::Caustic => Bi::Fill(0, 3),
         Builtin::Transmission => Bi::Fill(1, 3),
         Builtin::ShaderName => Bi::ShaderName,
-        Builtin::Depth => Bi::Depth,
-        // Arities the checker never produces.
-        Builtin::Log
+        // Arities the checker never produces; `depth` the front end lowers to a transform.
+        Builtin::Depth
+        | Builtin::Log
         | Builtin::Atan
         | Builtin::Pow
         | Builtin::Mod
@@ -776,10 +775,6 @@ pub fn call<F: ShadingFloat, C: ShadingContext<F>>(
             }
         }
         Bi::ShaderName => {}
-        Bi::Depth => {
-            let z = ctx.map_or(F::c(0.0), |c| c.globals().P.z);
-            fr.set(d, k, z);
-        }
     }
 }
 

@@ -303,6 +303,9 @@ impl<'a, 'd> Lowerer<'a, 'd> {
         }
         let ty = Type::new(o.ret, detail);
         let out_detail = detail.join(if self.flow() > 0 { Detail::Varying } else { Detail::Uniform });
+        if o.builtin == Builtin::Depth {
+            return self.depth(inputs[0], detail, e.span);
+        }
         let r = self.inst(Op::Call { builtin: o.builtin, overload: k, outputs }, inputs, ty, false, e.span);
         for (t, pl, span) in copy_out {
             if pl.ty.detail == Detail::Uniform && out_detail == Detail::Varying && detail == Detail::Varying {
@@ -323,6 +326,31 @@ impl<'a, 'd> Lowerer<'a, 'd> {
             }
         }
         Some(r)
+    }
+
+    /// `depth(p)` as `zcomp(transform("__depth", p))`: the renderer's depth space
+    /// ([`anysl_core::DEPTH_SPACE`]) maps camera depth to 0 at the near and 1 at the far
+    /// clipping plane, so every back end computes it with its space transforms.
+    fn depth(&mut self, p: crate::ir::Value, detail: Detail, span: Span) -> R {
+        let name = self.constant(Const::Str(anysl_core::DEPTH_SPACE.into()), BaseType::String, span);
+        let point = Type::new(BaseType::Point, detail);
+        let kt = builtins::resolve("transform", &[name.ty, point]).expect("transform(string, point)");
+        let t = self.inst(
+            Op::Call { builtin: Builtin::Transform, overload: kt, outputs: vec![None, None] },
+            vec![name.v, p],
+            point,
+            false,
+            span,
+        );
+        let kz = builtins::resolve("zcomp", &[point]).expect("zcomp(point)");
+        let z = Type::new(BaseType::Float, detail);
+        Some(self.inst(
+            Op::Call { builtin: Builtin::ZComp, overload: kz, outputs: vec![None] },
+            vec![t.v],
+            z,
+            false,
+            span,
+        ))
     }
 
     #[cold]
