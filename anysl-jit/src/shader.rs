@@ -55,9 +55,9 @@ type Slot = OnceLock<Result<Arc<CompiledShader>, String>>;
 /// The points entries compiled so far: (variant, layout) → machine code or the error.
 type PointsCache = Mutex<Vec<(Variant, PointsLayout, Result<Arc<CompiledPoints>, String>)>>;
 
-/// A surface shader compiled at run time. Each float type's variant is compiled on first use
-/// and cached; float types the JIT has no variant for (f64, intervals) run on the
-/// interpreter.
+/// A surface, displacement or light shader compiled at run time. Each float type's variant
+/// is compiled on first use and cached; float types the JIT has no variant for (f64,
+/// intervals) run on the interpreter.
 pub struct JitShader {
     /// The lowered IR (before the instance-specific passes).
     pub module: Arc<Module>,

@@ -245,6 +245,13 @@ fn bench_interp(opts: &interp_bench::InterpOpts, json: Option<PathBuf>) -> Resul
 /// Parses the command line and runs the command.
 #[must_use]
 pub fn main() -> ExitCode {
+    // A closed pipe (`anysl rslc eval … | head`) ends the process quietly, as it does other
+    // Unix tools, instead of a panic in the next `println!`.
+    #[cfg(unix)]
+    // SAFETY: setting a signal's disposition to the default before any thread is started.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Demo { out } => demo(&out),
