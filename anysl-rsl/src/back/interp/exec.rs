@@ -901,19 +901,7 @@ impl LightShader for InterpShader {
     }
 
     fn emission(&self) -> Option<Emission> {
-        let mut has_illuminate = false;
-        let mut has_solar = false;
-        crate::ir::walk(&self.program.module.func.body, &mut |n| match n {
-            crate::ir::Node::Illuminate { .. } => has_illuminate = true,
-            crate::ir::Node::Solar { .. } => has_solar = true,
-            _ => {}
-        });
-        Some(match (has_illuminate, has_solar) {
-            (false, false) => Emission::Ambient,
-            (true, false) => Emission::Local,
-            (false, true) => Emission::Distant,
-            (true, true) => return None,
-        })
+        self.program.emission
     }
 
     fn light<F: ShadingFloat>(&self, e: &mut Exec<F>, ps: Vec3<F>) -> LightOutput<F> {

@@ -152,6 +152,9 @@ pub struct Program {
     pub uses_derivatives: bool,
     /// The globals the shader reads ([`crate::passes::analysis::globals_read`]).
     pub globals_read: anysl_core::GlobalSet,
+    /// As a light shader, how it emits ([`anysl_core::LightShader::emission`]): found once
+    /// here, not per light call.
+    pub emission: Option<anysl_core::Emission>,
 }
 
 struct Alloc {
@@ -206,6 +209,7 @@ impl Program {
             params: vec![Loc::None; module.params.len()],
             uses_derivatives: func.insts.iter().any(|i| i.needs_derivs),
             globals_read: crate::passes::analysis::globals_read(&module),
+            emission: emission_of(&module.func.body),
         };
         for (i, s) in func.slots.iter().enumerate() {
             match &s.kind {
@@ -501,5 +505,23 @@ impl Cx<'_> {
         };
         out.push(CNode::Op(code));
         Ok(())
+    }
+}
+
+/// How a light shader with body `body` emits: ambient without `illuminate`/`solar`, local with
+/// `illuminate` only, distant with `solar` only, unknown (`None`) with both.
+fn emission_of(body: &crate::ir::Block) -> Option<anysl_core::Emission> {
+    use anysl_core::Emission;
+    let (mut has_illuminate, mut has_solar) = (false, false);
+    crate::ir::walk(body, &mut |n| match n {
+        crate::ir::Node::Illuminate { .. } => has_illuminate = true,
+        crate::ir::Node::Solar { .. } => has_solar = true,
+        _ => {}
+    });
+    match (has_illuminate, has_solar) {
+        (false, false) => Some(Emission::Ambient),
+        (true, false) => Some(Emission::Local),
+        (false, true) => Some(Emission::Distant),
+        (true, true) => None,
     }
 }
