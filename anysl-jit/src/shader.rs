@@ -73,8 +73,6 @@ pub struct JitShader {
     /// `values` as the run-time parameter block that code compiled without specialization
     /// reads ([`crate::codegen::param_block`]).
     param_block: Vec<f32>,
-    /// A light shader's [`LightShader::emission`], found once.
-    emission: Option<Emission>,
 }
 
 impl Clone for JitShader {
@@ -88,7 +86,6 @@ impl Clone for JitShader {
             points: PointsCache::default(),
             interp: self.interp.clone(),
             param_block: self.param_block.clone(),
-            emission: self.emission,
         }
     }
 }
@@ -109,17 +106,15 @@ impl JitShader {
         let interp_module = anysl_rsl::passes::optimize(module.clone(), &anysl_rsl::passes::PassOptions::default());
         let program = Program::new(interp_module).map_err(|e| JitError(e.to_string()))?;
         let param_block = crate::codegen::param_block(&module, &values).0;
-        let interp = InterpShader::new(Arc::new(program));
         Ok(Self {
             param_block,
-            emission: interp.emission(),
             module: Arc::new(module),
             values,
             opts,
             variants: Default::default(),
             eval_variants: Default::default(),
             points: PointsCache::default(),
-            interp,
+            interp: InterpShader::new(Arc::new(program)),
         })
     }
 
@@ -510,7 +505,7 @@ impl JitShader {
             cl: Color::new(rd(0), rd(1), rd(2)),
             l: Vec3::new(rd(3), rd(4), rd(5)),
             lit: e.mask(),
-            emission: self.emission.unwrap_or(Emission::Local),
+            emission: self.interp.emission().unwrap_or(Emission::Local),
         }
     }
 
@@ -654,7 +649,7 @@ impl LightShader for JitShader {
     }
 
     fn emission(&self) -> Option<Emission> {
-        self.emission
+        self.interp.emission()
     }
 
     fn category(&self) -> &str {

@@ -40,11 +40,6 @@ impl<'a> Gen<'a> {
                 ),
             ));
         }
-        if builtin == Builtin::Depth {
-            return Err(
-                self.err(span, "`depth` reached the back end: the front end lowers it to a transform".to_string())
-            );
-        }
         let light = self.m.kind == ShaderKind::Light;
         // Component-wise application for triples.
         let map1 = |f: &dyn Fn(&str) -> String, x: String, base: BaseType| -> String {
@@ -541,7 +536,9 @@ impl<'a> Gen<'a> {
             | Builtin::RendererInfo
             | Builtin::TextureInfo => self.k(0.0, r),
             Builtin::ShaderName => "\"\"".to_string(),
-            Builtin::Depth => unreachable!("returned above"),
+            Builtin::Depth => {
+                return Err(self.err(span, "`depth` reached the back end: the front end lowers it to a transform"))
+            }
             Builtin::RayInfo => self.k(0.0, r),
             // Outside a scene: camera rays, nothing occludes, no indirect or caustic light,
             // nothing blocks transmission (as the interpreter).
