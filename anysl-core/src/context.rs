@@ -6,7 +6,7 @@
 use crate::exec::Exec;
 use crate::float::ShadingFloat;
 use crate::globals::Globals;
-use crate::light::{run_illuminance, sum_ambient, Falloff, LightData, LightKind, LightQuery, LightSource};
+use crate::light::{run_illuminance, sum_ambient, Falloff, LightData, LightKind, LightQuery, LightRecord, LightSource};
 use crate::spaces::Spaces;
 use crate::vec::{Color, Vec3};
 
@@ -50,6 +50,16 @@ pub trait ShadingContext<F: ShadingFloat> {
     /// default): the context's own light loops must be called.
     #[inline(always)]
     fn lights_as_data(&self) -> Option<&[LightData]> {
+        None
+    }
+
+    /// The lights as records ([`LightRecord`]: each light's machine code at `F`, or its
+    /// data), when this context can describe them so and not as data: then
+    /// `illuminance("", p, cone, body)` is [`run_illuminance`] with each light evaluated by
+    /// its code (or data) and no shadowing, and `ambient()` is [`sum_ambient`] over them, as
+    /// for [`ShadingContext::lights_as_data`]. `None` (the default): no such description.
+    #[inline(always)]
+    fn light_records(&self) -> Option<&[LightRecord]> {
         None
     }
 
@@ -101,6 +111,8 @@ pub trait ErasedContext<F: ShadingFloat> {
     fn trace_dyn(&mut self, e: &Exec<F>, p: Vec3<F>, dir: Vec3<F>) -> Color<F>;
     /// [`ShadingContext::lights_as_data`].
     fn lights_as_data_dyn(&self) -> Option<&[LightData]>;
+    /// [`ShadingContext::light_records`].
+    fn light_records_dyn(&self) -> Option<&[LightRecord]>;
     /// [`ShadingContext::spaces`].
     fn spaces_dyn(&self) -> &Spaces;
     /// [`ShadingContext::ray_depth`].
@@ -127,6 +139,9 @@ impl<F: ShadingFloat, C: ShadingContext<F>> ErasedContext<F> for C {
     }
     fn lights_as_data_dyn(&self) -> Option<&[LightData]> {
         self.lights_as_data()
+    }
+    fn light_records_dyn(&self) -> Option<&[LightRecord]> {
+        self.light_records()
     }
     fn spaces_dyn(&self) -> &Spaces {
         self.spaces()
@@ -161,6 +176,9 @@ impl<F: ShadingFloat> ShadingContext<F> for Erased<'_, F> {
     fn lights_as_data(&self) -> Option<&[LightData]> {
         self.0.lights_as_data_dyn()
     }
+    fn light_records(&self) -> Option<&[LightRecord]> {
+        self.0.light_records_dyn()
+    }
     fn spaces(&self) -> &Spaces {
         self.0.spaces_dyn()
     }
@@ -192,6 +210,24 @@ pub struct PointContext<'a, F: ShadingFloat, L> {
     /// `lights` as data, made on the first [`ShadingContext::lights_as_data`] (and for the
     /// slice it was made from: after `lights` is replaced, the context describes none).
     data: core::cell::OnceCell<Option<LightTable>>,
+    /// `lights` as records, made on the first [`ShadingContext::light_records`] (for the
+    /// slice it was made from, as `data`).
+    records: core::cell::OnceCell<Option<RecordTable>>,
+}
+
+/// The lights of a [`PointContext`] as records, for the slice they were made from.
+struct RecordTable {
+    from: (usize, usize),
+    records: Vec<LightRecord>,
+}
+
+/// `lights` as records at float type `F`, when each has code or data and at least one has
+/// code (lights that are all data are described as data).
+#[cold]
+fn record_table<F: ShadingFloat, L: LightSource>(lights: &[L]) -> Option<RecordTable> {
+    let records = lights.iter().map(LightRecord::of::<F, L>).collect::<Option<Vec<_>>>()?;
+    let from = (lights.as_ptr() as usize, lights.len());
+    records.iter().any(|r| !r.code.entry.is_null()).then_some(RecordTable { from, records })
 }
 
 impl<'a, F: ShadingFloat, L: LightSource> PointContext<'a, F, L> {
@@ -206,6 +242,7 @@ impl<'a, F: ShadingFloat, L: LightSource> PointContext<'a, F, L> {
             zenith: Color::c(0.2, 0.3, 0.8),
             spaces: Spaces::standard(),
             data: core::cell::OnceCell::new(),
+            records: core::cell::OnceCell::new(),
         }
     }
 }
@@ -266,6 +303,16 @@ impl<F: ShadingFloat, L: LightSource> ShadingContext<F> for PointContext<'_, F, 
         }
         let t = self.data.get_or_init(|| light_table(self.lights)).as_ref()?;
         (t.from == (self.lights.as_ptr() as usize, self.lights.len())).then(|| &t.data[..t.len])
+    }
+
+    /// Lights without shadows: as records when each has code or data, not all of them data.
+    #[inline]
+    fn light_records(&self) -> Option<&[LightRecord]> {
+        if L::as_data(self.lights).is_some() {
+            return None;
+        }
+        let t = self.records.get_or_init(|| record_table::<F, L>(self.lights)).as_ref()?;
+        (t.from == (self.lights.as_ptr() as usize, self.lights.len())).then_some(&t.records[..])
     }
 
     #[inline(always)]

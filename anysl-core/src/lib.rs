@@ -37,8 +37,8 @@ pub use exec::{Exec, INTERVAL_LOOP_LIMIT};
 pub use float::{rsqrt_f32, Blend, LatticeBits, Mask, PureFn, ShadingFloat, RSQRT_ESTIMATE_14};
 pub use globals::{GlobalSet, Globals, SurfaceOutput};
 pub use light::{
-    illuminate, in_cone, run_illuminance, solar, sum_ambient, ConeTest, Emission, Falloff, LightData, LightKind,
-    LightOutput, LightQuery, LightSource,
+    illuminate, in_cone, run_illuminance, solar, sum_ambient, ConeTest, Emission, Falloff, LightCode, LightData,
+    LightKind, LightOutput, LightQuery, LightRecord, LightSource,
 };
 pub use shader::{
     DisplacementShader, ImagerPixel, ImagerShader, LightShader, ParamError, ParamField, ParamInfo, ParamType,

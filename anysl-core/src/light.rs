@@ -9,14 +9,15 @@ use crate::float::{Mask, ShadingFloat};
 use crate::vec::{Color, Vec3};
 
 /// How a light reaches a surface.
+#[repr(u32)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Emission {
     /// No direction: contributes to `ambient()` only.
-    Ambient,
+    Ambient = 0,
     /// From a point (`illuminate`): shadow rays stop at the light.
-    Local,
+    Local = 1,
     /// From a direction (`solar`): shadow rays go to infinity.
-    Distant,
+    Distant = 2,
 }
 
 /// What a light shader computes for a set of surface points.
@@ -74,6 +75,71 @@ pub struct LightData {
     pub cl: [f32; 3],
 }
 
+/// A light shader's machine code, callable by compiled surface code in its own light loops
+/// (the JIT's), so that a light that data cannot describe costs a call, not a trip through
+/// the renderer's loop. `#[repr(C)]`: compiled code reads it in place.
+///
+/// `entry` is `extern "C" fn(ps, out, mask, ctx, host, params)`: `ps` the surface points
+/// (three values of the float type, one packet's width apart), `out` where it writes `Cl`
+/// then `L` (six values so), `mask` the live lanes (one `u32` per lane), and `ctx`, `host`,
+/// `params` passed through as this record holds them. The code is that of the light's
+/// [`LightShader::light`](crate::LightShader::light) for one float type: a light gives it
+/// ([`LightShader::code`](crate::LightShader::code)) only for the float type it was compiled
+/// for, and every pointer stays valid while the light lives unchanged.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct LightCode {
+    /// The entry point (never null).
+    pub entry: *const (),
+    /// The context the code's callbacks receive (e.g. the light's named spaces).
+    pub ctx: *const (),
+    /// The code's callback table.
+    pub host: *const usize,
+    /// The light's parameter block.
+    pub params: *const f32,
+    /// How the light always emits (`Local` when it may vary).
+    pub emission: Emission,
+}
+
+// SAFETY: the pointers are to machine code and to data the light owns and does not change
+// while it lives (what `LightCode` promises); sharing them between threads shares nothing
+// mutable.
+unsafe impl Send for LightCode {}
+// SAFETY: as for `Send`.
+unsafe impl Sync for LightCode {}
+
+/// One light for compiled light loops ([`ShadingContext::light_records`](crate::ShadingContext::light_records)):
+/// its code when it has some, else its data. `#[repr(C)]`: compiled code reads it in place.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct LightRecord {
+    /// The light as data (read when `code.entry` is null).
+    pub data: LightData,
+    /// The light's code (`entry` null: the light is `data`).
+    pub code: LightCode,
+}
+
+impl LightRecord {
+    /// The record of `light` at float type `F`: its code, else its data; `None` when it has
+    /// neither.
+    #[must_use]
+    pub fn of<F: ShadingFloat, L: LightSource>(light: &L) -> Option<Self> {
+        let none = LightData { kind: LightKind::Ambient, falloff: Falloff::None, pos: [0.0; 3], cl: [0.0; 3] };
+        if let Some(code) = light.source_code::<F>() {
+            return Some(Self { data: none, code });
+        }
+        let data = light.source_data()?;
+        let code = LightCode {
+            entry: core::ptr::null(),
+            ctx: core::ptr::null(),
+            host: core::ptr::null(),
+            params: core::ptr::null(),
+            emission: Emission::Local,
+        };
+        Some(Self { data, code })
+    }
+}
+
 impl LightData {
     /// What the light shader computes for the points `ps`.
     #[inline(always)]
@@ -114,6 +180,11 @@ pub trait LightSource {
     fn evaluate<F: ShadingFloat>(&self, e: &mut Exec<F>, ps: Vec3<F>) -> LightOutput<F>;
     /// [`LightShader::data`](crate::LightShader::data): the light as data, when data can describe it.
     fn source_data(&self) -> Option<LightData>;
+    /// [`LightShader::code`](crate::LightShader::code): the light's machine code for float type `F`, when it has some.
+    #[inline(always)]
+    fn source_code<F: ShadingFloat>(&self) -> Option<LightCode> {
+        None
+    }
     /// `lights` as data without a copy, when they already are data.
     #[inline(always)]
     fn as_data(lights: &[Self]) -> Option<&[LightData]>

@@ -5,7 +5,7 @@ use crate::context::ShadingContext;
 use crate::exec::Exec;
 use crate::float::ShadingFloat;
 use crate::globals::SurfaceOutput;
-use crate::light::{Emission, LightData, LightOutput, LightSource};
+use crate::light::{Emission, LightCode, LightData, LightOutput, LightSource};
 use crate::spaces::Spaces;
 use crate::vec::{Color, Vec3};
 use core::fmt;
@@ -392,6 +392,22 @@ pub trait LightShader: Shader {
     fn data(&self) -> Option<LightData> {
         None
     }
+
+    /// The machine code of [`LightShader::light`] at float type `F`, for compiled light loops
+    /// to call ([`LightCode`]), when the light has code for `F` that they can call; `None`
+    /// (the default) otherwise.
+    #[inline(always)]
+    fn code<F: ShadingFloat>(&self) -> Option<LightCode> {
+        self.code_in::<F>(Spaces::standard())
+    }
+
+    /// [`LightShader::code`] of [`LightShader::light_in`] with `spaces`, which must outlive
+    /// every use of the code (the pointer is kept in it).
+    #[inline(always)]
+    fn code_in<F: ShadingFloat>(&self, spaces: &Spaces) -> Option<LightCode> {
+        let _ = spaces;
+        None
+    }
 }
 
 /// A displacement shader: moves P and sets N.
@@ -562,5 +578,9 @@ impl<T: LightShader> LightSource for T {
     #[inline(always)]
     fn source_data(&self) -> Option<LightData> {
         self.data()
+    }
+    #[inline(always)]
+    fn source_code<F: ShadingFloat>(&self) -> Option<LightCode> {
+        self.code::<F>()
     }
 }

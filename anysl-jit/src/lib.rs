@@ -321,6 +321,9 @@ unsafe impl Sync for Owned {}
 pub struct CompiledShader {
     /// The entry point (see [`abi::ShadeFn`]).
     pub f: ShadeFn,
+    /// A light shader's direct entry ([`anysl_core::LightCode::entry`]): present for light
+    /// shaders of the non-dual variants whose code calls the host for named spaces at most.
+    pub light: Option<usize>,
     /// The variant.
     pub variant: Variant,
     /// Stage times and instruction counts.
@@ -434,10 +437,10 @@ pub fn compile_with(
     opts: &JitOptions,
     keep_ir: bool,
 ) -> Result<CompiledShader, JitError> {
-    let (addr, stats, llvm_ir, owned) = build(module, values, variant, opts, keep_ir, None)?;
+    let (addr, light, stats, llvm_ir, owned) = build(module, values, variant, opts, keep_ir, None)?;
     // SAFETY: the function was generated with the `ShadeFn` signature.
     let f: ShadeFn = unsafe { std::mem::transmute::<usize, ShadeFn>(addr) };
-    Ok(CompiledShader { f, variant, stats, llvm_ir, _owned: owned })
+    Ok(CompiledShader { f, light, variant, stats, llvm_ir, _owned: owned })
 }
 
 /// What a points entry ([`abi::PointsFn`]) reads and writes: the global components read
@@ -514,7 +517,7 @@ pub fn compile_points(
         return Err(JitError(format!("the points entry shades surface shaders, not {:?}", module.kind)));
     }
     let opts = JitOptions { opt_level: opts.points_opt_level, ..opts.clone() };
-    let (addr, stats, llvm_ir, owned) = build(module, values, variant, &opts, keep_ir, Some(layout))?;
+    let (addr, _, stats, llvm_ir, owned) = build(module, values, variant, &opts, keep_ir, Some(layout))?;
     // SAFETY: the function was generated with the `PointsFn` signature.
     let f: PointsFn = unsafe { std::mem::transmute::<usize, PointsFn>(addr) };
     Ok(CompiledPoints { f, variant, layout, stats, llvm_ir, _owned: owned })
@@ -529,7 +532,7 @@ fn build(
     opts: &JitOptions,
     keep_ir: bool,
     points: Option<PointsLayout>,
-) -> Result<(usize, CompileStats, Option<String>, Owned), JitError> {
+) -> Result<(usize, Option<usize>, CompileStats, Option<String>, Owned), JitError> {
     init_llvm();
     let mut stats = CompileStats::default();
     let t0 = Instant::now();
@@ -576,6 +579,11 @@ fn build(
         }
         None => Cg::shade_name(),
     };
+    // A light's direct entry, when its code needs no host callback but named spaces (which
+    // the entry's callback table answers from the light's own spaces).
+    let spaces_only = cg.host_used.get() & !(1 << rt::Host::Space as u64) == 0;
+    let light = (m.kind == anysl_rsl::ir::ShaderKind::Light && points.is_none() && !variant.dual() && spaces_only)
+        .then(|| cg.generate_light_entry(shade));
     stats.threaded_fns = cg.threaded_fns;
     let llmod = std::mem::replace(&mut cg.m, cref.create_module("empty"));
     drop(cg);
@@ -620,6 +628,10 @@ fn build(
     let t3 = Instant::now();
     let ee = llmod.create_jit_execution_engine(level).map_err(|e| JitError(e.to_string()))?;
     let addr = ee.get_function_address(entry).map_err(|e| JitError(e.to_string()))?;
+    let light = match light {
+        Some(_) => Some(ee.get_function_address(codegen::LIGHT_NAME).map_err(|e| JitError(e.to_string()))?),
+        None => None,
+    };
     stats.times_ms.push(("codegen", t3.elapsed().as_secs_f64() * 1e3));
-    Ok((addr, stats, llvm_ir, Owned { ee: Some(ee), module: Some(llmod), ctx: Some(ctx), counters }))
+    Ok((addr, light, stats, llvm_ir, Owned { ee: Some(ee), module: Some(llmod), ctx: Some(ctx), counters }))
 }

@@ -11,7 +11,7 @@ use anysl_ad::Dual;
 use anysl_core::points::{PointSet, ShadeOut};
 use anysl_core::prelude::*;
 use anysl_core::shader::{ParamError, ParamValue, ShaderMeta};
-use anysl_core::{Emission, LightOutput, LightShader, LightSource, PointContext, Spaces};
+use anysl_core::{Emission, LightCode, LightOutput, LightShader, LightSource, PointContext, Spaces};
 use anysl_rsl::back::interp::{InterpShader, LightCtx, Program};
 use anysl_rsl::ir::{Const, Global, Module};
 use anysl_rsl::CompileOptions;
@@ -654,5 +654,19 @@ impl LightShader for JitShader {
 
     fn category(&self) -> &str {
         self.interp.category()
+    }
+
+    /// The direct entry of the variant of `F` (compiling it now if needed), when the light
+    /// compiles for it and needs no callback but named spaces, which it finds in `spaces`.
+    fn code_in<F: ShadingFloat>(&self, spaces: &Spaces) -> Option<LightCode> {
+        let v = variant_of::<F>()?;
+        let entry = self.variant_ref(v).ok()?.light?;
+        Some(LightCode {
+            entry: entry as *const (),
+            ctx: (spaces as *const Spaces).cast(),
+            host: crate::rt::light_host_table(),
+            params: self.param_block.as_ptr(),
+            emission: self.interp.emission().unwrap_or(Emission::Local),
+        })
     }
 }

@@ -6,8 +6,8 @@
 use crate::build::LightCall;
 use crate::shaders::{apply_params, standard_light, ShaderLibrary, ShaderSource};
 use anysl_core::{
-    Emission, Exec, LightData, LightOutput, LightShader, ParamError, ParamType, ParamValue, Shader, ShaderMeta,
-    ShadingFloat, Spaces, Vec3,
+    Emission, Exec, LightCode, LightData, LightOutput, LightShader, ParamError, ParamType, ParamValue, Shader,
+    ShaderMeta, ShadingFloat, Spaces, Vec3,
 };
 use anysl_rsl::back::interp::InterpShader;
 use anysl_rsl::ir::ShaderKind;
@@ -92,6 +92,13 @@ impl<S: LightShader> LightShader for SceneLight<S> {
         match self {
             Self::Standard(l) => l.data(),
             Self::Shader(_) => None,
+        }
+    }
+    /// A `.sl` light's code in its own spaces (the standard lights are data).
+    fn code<F: ShadingFloat>(&self) -> Option<LightCode> {
+        match self {
+            Self::Standard(_) => None,
+            Self::Shader(s) => s.shader.code_in::<F>(&s.spaces),
         }
     }
 }

@@ -130,6 +130,7 @@ impl<'c> Cg<'c, '_> {
     }
 
     pub(super) fn host_fn_ptr(&self, idx: Host, ty: inkwell::types::FunctionType<'c>) -> PointerValue<'c> {
+        self.host_used.set(self.host_used.get() | 1 << idx as u64);
         let host = self.st().host.into_pointer_value();
         let slot =
             unsafe { self.b.build_gep(host, &[self.cx.i64_type().const_int(idx as u64, false)], "") }.expect("gep");
@@ -189,7 +190,7 @@ impl<'c> Cg<'c, '_> {
             .collect()
     }
 
-    fn out_buf(&self, n: usize, uni: bool) -> PointerValue<'c> {
+    pub(super) fn out_buf(&self, n: usize, uni: bool) -> PointerValue<'c> {
         let (elt, per): (BasicTypeEnum<'c>, usize) =
             if uni { (self.f32t.into(), 1) } else { (self.vt(), if self.t.dual { 3 } else { 1 }) };
         let buf = self.entry_alloca(elt.array_type((n * per).max(1) as u32).into());
@@ -202,7 +203,7 @@ impl<'c> Cg<'c, '_> {
     }
 
     /// Mask `m` as `u32` lanes in memory.
-    fn mask_buf_of(&self, m: M<'c>) -> PointerValue<'c> {
+    pub(super) fn mask_buf_of(&self, m: M<'c>) -> PointerValue<'c> {
         let i32t = self.cx.i32_type();
         let (ty, v): (BasicTypeEnum<'c>, BasicValueEnum<'c>) = match m.v {
             BasicValueEnum::IntValue(x) => (i32t.into(), self.b.build_int_s_extend(x, i32t, "").expect("sext").into()),

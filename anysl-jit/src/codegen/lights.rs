@@ -16,7 +16,7 @@
 use super::{Cg, Repr, M, S};
 use crate::rt::Host;
 use crate::rt::{self, RtKind};
-use anysl_core::{Falloff, LightData, LightKind};
+use anysl_core::{Emission, Falloff, LightCode, LightData, LightKind, LightRecord};
 use anysl_rsl::ir::Global;
 use core::mem::{offset_of, size_of};
 use inkwell::types::BasicType;
@@ -26,6 +26,17 @@ use inkwell::{AddressSpace, FloatPredicate, IntPredicate};
 /// A cone prepared for [`Cg::cone_test_contains`]: the axis, `cos²(angle)·|axis|²`, the
 /// no-wider-than-a-hemisphere mask and the admits-everything mask.
 pub(super) type ConeCode<'c> = (Vec<S<'c>>, S<'c>, M<'c>, M<'c>);
+
+/// The lights a compiled loop visits ([`Cg::light_table`]): `n` records from `base`, each a
+/// [`LightData`] or — when `records` — a [`LightRecord`] (its data at the start).
+#[derive(Clone, Copy)]
+pub(super) struct LightTable<'c> {
+    pub(super) base: PointerValue<'c>,
+    pub(super) n: IntValue<'c>,
+    pub(super) records: IntValue<'c>,
+}
+
+const _: () = assert!(offset_of!(LightRecord, data) == 0);
 
 /// The sums one loop computes.
 #[derive(Clone, Copy)]
@@ -53,21 +64,14 @@ impl<'c> Cg<'c, '_> {
             _ => Sums { specular: false, diffuse: false, ambient: true },
         };
         let func = self.cur_fn();
-        let ctx = self.st().ctx.into_pointer_value();
-        let word = |cg: &Self, off: u64, t: inkwell::types::BasicTypeEnum<'c>| {
-            let p = unsafe { cg.b.build_gep(ctx, &[cg.cx.i64_type().const_int(off, false)], "") }.expect("gep");
-            let p = cg.b.build_pointer_cast(p, t.ptr_type(AddressSpace::default()), "").expect("cast");
-            cg.b.build_load(p, "").expect("load")
-        };
-        let _ = word;
-        let (lights, n) = self.light_data_ptr();
+        let table = self.light_table();
         let inline_bb = self.cx.append_basic_block(func, "lights.data");
         let host_bb = self.cx.append_basic_block(func, "lights.host");
         let join = self.cx.append_basic_block(func, "lights.join");
-        let none = self.b.build_is_null(lights, "").expect("isnull");
+        let none = self.b.build_is_null(table.base, "").expect("isnull");
         self.b.build_conditional_branch(none, host_bb, inline_bb).expect("br");
         self.b.position_at_end(inline_bb);
-        let a = self.light_loop(sums, args, lights, n);
+        let a = self.light_loop(sums, args, table);
         let a_end = self.b.get_insert_block().expect("positioned");
         self.b.build_unconditional_branch(join).expect("br");
         self.b.position_at_end(host_bb);
@@ -87,9 +91,10 @@ impl<'c> Cg<'c, '_> {
             .collect()
     }
 
-    /// The context's lights as data: the pointer and count the compiled code finds in
-    /// [`crate::rt::HostCtx`] (null when the renderer's loops must be called).
-    pub(super) fn light_data_ptr(&self) -> (PointerValue<'c>, IntValue<'c>) {
+    /// The context's lights as the compiled code finds them in [`crate::rt::HostCtx`]: its
+    /// lights as data when it has them, else its light records, else none (a null base: the
+    /// renderer's loops must be called).
+    pub(super) fn light_table(&self) -> LightTable<'c> {
         let ctx = self.st().ctx.into_pointer_value();
         let word = |cg: &Self, off: u64, t: inkwell::types::BasicTypeEnum<'c>| {
             let p = unsafe { cg.b.build_gep(ctx, &[cg.cx.i64_type().const_int(off, false)], "") }.expect("gep");
@@ -98,7 +103,16 @@ impl<'c> Cg<'c, '_> {
         };
         let lights = word(self, rt::HOST_CTX_LIGHTS, self.i8p().into()).into_pointer_value();
         let n = word(self, rt::HOST_CTX_N_LIGHTS, self.cx.i64_type().into()).into_int_value();
-        (lights, n)
+        let recs = word(self, rt::HOST_CTX_RECORDS, self.i8p().into()).into_pointer_value();
+        let n_recs = word(self, rt::HOST_CTX_N_RECORDS, self.cx.i64_type().into()).into_int_value();
+        if self.t.dual {
+            // Lights have code only for the variants without derivatives.
+            return LightTable { base: lights, n, records: self.cx.bool_type().const_zero() };
+        }
+        let records = self.b.build_is_null(lights, "").expect("isnull");
+        let base = self.b.build_select(records, recs, lights, "").expect("select").into_pointer_value();
+        let n = self.b.build_select(records, n_recs, n, "").expect("select").into_int_value();
+        LightTable { base, n, records }
     }
 
     /// `ConeTest::new(axis, angle)`: the axis, `cos²(angle)·|axis|²`, whether the cone is no
@@ -147,8 +161,7 @@ impl<'c> Cg<'c, '_> {
         position: anysl_rsl::ir::Value,
         cone: Option<(anysl_rsl::ir::Value, anysl_rsl::ir::Value)>,
         body: &anysl_rsl::ir::Block,
-        lights: PointerValue<'c>,
-        n: IntValue<'c>,
+        table: LightTable<'c>,
     ) -> super::value::R<()> {
         let func = self.cur_fn();
         let i64t = self.cx.i64_type();
@@ -174,13 +187,21 @@ impl<'c> Cg<'c, '_> {
         self.b.position_at_end(head);
         let i = self.b.build_phi(i64t, "").expect("phi");
         let iv = i.as_basic_value().into_int_value();
-        let more = self.b.build_int_compare(IntPredicate::ULT, iv, n, "").expect("icmp");
+        let more = self.b.build_int_compare(IntPredicate::ULT, iv, table.n, "").expect("icmp");
         self.b.build_conditional_branch(more, rec_bb, exit).expect("br");
 
         self.b.position_at_end(rec_bb);
-        let size = i64t.const_int(size_of::<LightData>() as u64, false);
-        let at = self.b.build_int_mul(iv, size, "").expect("mul");
-        let rec = unsafe { self.b.build_gep(lights, &[at], "") }.expect("gep");
+        let rec = self.light_record(&table, iv);
+        let data_bb = self.cx.append_basic_block(func, "illum.data");
+        let code_bb = self.cx.append_basic_block(func, "illum.code");
+        // Records with code exist only for the variants without derivatives.
+        let with_code = !self.t.dual;
+        if with_code {
+            self.branch_on_code(&table, rec, code_bb, data_bb);
+        } else {
+            self.b.build_unconditional_branch(data_bb).expect("br");
+        }
+        self.b.position_at_end(data_bb);
         let field = |cg: &Self, off: usize, t: inkwell::types::BasicTypeEnum<'c>| {
             let q = unsafe { cg.b.build_gep(rec, &[i64t.const_int(off as u64, false)], "") }.expect("gep");
             let q = cg.b.build_pointer_cast(q, t.ptr_type(AddressSpace::default()), "").expect("cast");
@@ -238,6 +259,45 @@ impl<'c> Cg<'c, '_> {
                 S { r: q.r, v: phi.as_basic_value(), d }
             })
             .collect();
+        // A light with code: called for `position` under the loop's live lanes, unless it is
+        // an ambient light (which `illuminance` does not visit); its `L` and `Cl` join the
+        // data lights' (as varying values).
+        let (l, cl) = if with_code {
+            let lv: Vec<S<'c>> = l.iter().map(|&x| self.to(x, Repr::V)).collect();
+            let clv: Vec<S<'c>> = cl.iter().map(|&x| self.to(x, Repr::V)).collect();
+            let data_end = self.b.get_insert_block().expect("positioned");
+            let sum_bb = self.cx.append_basic_block(func, "illum.lit");
+            self.b.build_unconditional_branch(sum_bb).expect("br");
+            self.b.position_at_end(code_bb);
+            let emission = self.record_code_field(rec, offset_of!(LightCode, emission), self.cx.i32_type().into());
+            let amb = Emission::Ambient as u64;
+            let is_amb = self
+                .b
+                .build_int_compare(IntPredicate::EQ, emission.into_int_value(), self.i32c(amb), "")
+                .expect("icmp");
+            let call_bb = self.cx.append_basic_block(func, "illum.call");
+            self.b.build_conditional_branch(is_amb, latch, call_bb).expect("br");
+            self.b.position_at_end(call_bb);
+            let live = self.mand(m_outer, self.mnot(self.load_mask(brk)));
+            let (ccl, cl_l) = self.call_light_code(rec, &ps, self.splat_mask(live));
+            let code_end = self.b.get_insert_block().expect("positioned");
+            self.b.build_unconditional_branch(sum_bb).expect("br");
+            self.b.position_at_end(sum_bb);
+            let vt = self.vt();
+            let join = |cg: &Self, a: &[S<'c>], b: &[S<'c>]| -> Vec<S<'c>> {
+                a.iter()
+                    .zip(b)
+                    .map(|(x, y)| {
+                        let phi = cg.b.build_phi(vt, "").expect("phi");
+                        phi.add_incoming(&[(&x.v, data_end), (&y.v, code_end)]);
+                        S { r: Repr::V, v: phi.as_basic_value(), d: None }
+                    })
+                    .collect()
+            };
+            (join(self, &lv, &cl_l), join(self, &clv, &ccl))
+        } else {
+            (l, cl)
+        };
         let to_light: Vec<S<'c>> = l.iter().map(|&x| self.neg(x)).collect();
         let mut m = self.mand(m_outer, self.mnot(self.load_mask(brk)));
         if let Some(cone) = &cone {
@@ -278,10 +338,10 @@ impl<'c> Cg<'c, '_> {
         Ok(())
     }
 
-    /// The loop over the `n` lights at `lights`: the sums `sums` for the call arguments
-    /// `args` (`N`, then `V` and `roughness` for `specular`), in the order of the host shims'
+    /// The loop over the lights of `table`: the sums `sums` for the call arguments `args`
+    /// (`N`, then `V` and `roughness` for `specular`), in the order of the host shims'
     /// outputs (specular, diffuse, ambient).
-    fn light_loop(&mut self, sums: Sums, args: &[S<'c>], lights: PointerValue<'c>, n: IntValue<'c>) -> Vec<S<'c>> {
+    fn light_loop(&mut self, sums: Sums, args: &[S<'c>], table: LightTable<'c>) -> Vec<S<'c>> {
         let func = self.cur_fn();
         let i64t = self.cx.i64_type();
         let vt = self.vt();
@@ -304,6 +364,7 @@ impl<'c> Cg<'c, '_> {
             })
         };
         let (spec, diff, amb) = (acc(self, sums.specular), acc(self, sums.diffuse), acc(self, sums.ambient));
+        let directed = sums.specular || sums.diffuse;
 
         let pre = self.b.get_insert_block().expect("positioned");
         let head = self.cx.append_basic_block(func, "lights.head");
@@ -314,13 +375,17 @@ impl<'c> Cg<'c, '_> {
         self.b.position_at_end(head);
         let i = self.b.build_phi(i64t, "").expect("phi");
         let iv = i.as_basic_value().into_int_value();
-        let more = self.b.build_int_compare(IntPredicate::ULT, iv, n, "").expect("icmp");
+        let more = self.b.build_int_compare(IntPredicate::ULT, iv, table.n, "").expect("icmp");
         self.b.build_conditional_branch(more, body, exit).expect("br");
 
         self.b.position_at_end(body);
-        let size = i64t.const_int(size_of::<LightData>() as u64, false);
-        let at = self.b.build_int_mul(iv, size, "").expect("mul");
-        let rec = unsafe { self.b.build_gep(lights, &[at], "") }.expect("gep");
+        let rec = self.light_record(&table, iv);
+        // A record with code: the light's entry called for `P` under the mask.
+        let data_bb = self.cx.append_basic_block(func, "light.data");
+        let code_bb = self.cx.append_basic_block(func, "light.code");
+        self.branch_on_code(&table, rec, code_bb, data_bb);
+
+        self.b.position_at_end(data_bb);
         let field_i32 = |cg: &Self, off: usize| -> IntValue<'c> {
             let q = unsafe { cg.b.build_gep(rec, &[i64t.const_int(off as u64, false)], "") }.expect("gep");
             let t = cg.cx.i32_type().ptr_type(AddressSpace::default());
@@ -337,8 +402,8 @@ impl<'c> Cg<'c, '_> {
         let cl_u = triple(self, offset_of!(LightData, cl));
         let amb_bb = self.cx.append_basic_block(func, "light.ambient");
         let lit_bb = self.cx.append_basic_block(func, "light.directed");
+        let sum_bb = self.cx.append_basic_block(func, "light.sum");
         let kval = |k: LightKind| self.cx.i32_type().const_int(k as u64, false);
-        let directed = sums.specular || sums.diffuse;
         let mut cases = Vec::new();
         if sums.ambient {
             cases.push((kval(LightKind::Ambient), amb_bb));
@@ -363,11 +428,12 @@ impl<'c> Cg<'c, '_> {
         // The lights `illuminance` visits, `L` and `Cl` as `LightData::light` computes them:
         // a point light's `L = P - pos` and its falloff, a distant light's `L = pos`.
         self.b.position_at_end(lit_bb);
-        if directed {
+        let data_lit = if directed {
             let pos = triple(self, offset_of!(LightData, pos));
             let point = self.b.build_int_compare(IntPredicate::EQ, kind, kval(LightKind::Point), "").expect("icmp");
             let point = M { uni: true, v: point.into() };
-            let l: Vec<S<'c>> = (0..3).map(|k| self.sel(point, self.sub(p[k], pos[k]), pos[k])).collect();
+            let l: Vec<S<'c>> =
+                (0..3).map(|k| self.to(self.sel(point, self.sub(p[k], pos[k]), pos[k]), Repr::V)).collect();
             let cl_v: Vec<S<'c>> = cl_u.iter().map(|&c| self.to(c, Repr::V)).collect();
             // A point light with the inverse-square law divides by `L·L` (a distant light's
             // falloff field is not read).
@@ -381,7 +447,7 @@ impl<'c> Cg<'c, '_> {
             self.b.build_conditional_branch(sq, sq_bb, in_bb).expect("br");
             self.b.position_at_end(sq_bb);
             let d2 = self.dot(&l, &l);
-            let cl_sq: Vec<S<'c>> = cl_v.iter().map(|&c| self.div(c, d2)).collect();
+            let cl_sq: Vec<S<'c>> = cl_v.iter().map(|&c| self.to(self.div(c, d2), Repr::V)).collect();
             self.b.build_unconditional_branch(in_bb).expect("br");
             self.b.position_at_end(in_bb);
             let cl: Vec<S<'c>> = (0..3)
@@ -391,6 +457,67 @@ impl<'c> Cg<'c, '_> {
                     S { r: Repr::V, v: phi.as_basic_value(), d: None }
                 })
                 .collect();
+            let end = self.b.get_insert_block().expect("positioned");
+            self.b.build_unconditional_branch(sum_bb).expect("br");
+            Some((l, cl, end))
+        } else {
+            self.b.build_unconditional_branch(latch).expect("br");
+            None
+        };
+
+        // A light with code: `ambient()` takes an ambient light's `Cl` for the live lanes
+        // (`sum_ambient`), `illuminance` a directed light's `Cl` and `L`; a light that does
+        // not emit so is not called.
+        self.b.position_at_end(code_bb);
+        let emission = self.record_code_field(rec, offset_of!(LightCode, emission), self.cx.i32_type().into());
+        let is_amb = self
+            .b
+            .build_int_compare(IntPredicate::EQ, emission.into_int_value(), self.i32c(Emission::Ambient as u64), "")
+            .expect("icmp");
+        let code_amb_bb = self.cx.append_basic_block(func, "light.code.ambient");
+        let code_dir_bb = self.cx.append_basic_block(func, "light.code.directed");
+        self.b
+            .build_conditional_branch(
+                is_amb,
+                if sums.ambient { code_amb_bb } else { latch },
+                if directed { code_dir_bb } else { latch },
+            )
+            .expect("br");
+        self.b.position_at_end(code_amb_bb);
+        if let Some(amb) = amb {
+            let (cl, _) = self.call_light_code(rec, &p, m0);
+            for (c, slot) in amb.iter().enumerate() {
+                let old = S { r: Repr::V, v: self.b.build_load(*slot, "").expect("load"), d: None };
+                let new = self.add(old, self.sel(m0, cl[c], self.to(zero, Repr::V)));
+                self.b.build_store(*slot, self.to(new, Repr::V).v).expect("store");
+            }
+        }
+        self.b.build_unconditional_branch(latch).expect("br");
+        self.b.position_at_end(code_dir_bb);
+        let code_lit = if directed {
+            let (cl, l) = self.call_light_code(rec, &p, m0);
+            let end = self.b.get_insert_block().expect("positioned");
+            self.b.build_unconditional_branch(sum_bb).expect("br");
+            Some((l, cl, end))
+        } else {
+            self.b.build_unconditional_branch(latch).expect("br");
+            None
+        };
+
+        self.b.position_at_end(sum_bb);
+        if let (Some((dl, dcl, dend)), Some((cl_l, ccl, cend))) = (data_lit, code_lit) {
+            let join = |cg: &Self, a: &[S<'c>], b: &[S<'c>]| -> Vec<S<'c>> {
+                a.iter()
+                    .zip(b)
+                    .map(|(x, y)| {
+                        let phi = cg.b.build_phi(vt, "").expect("phi");
+                        phi.add_incoming(&[(&x.v, dend), (&y.v, cend)]);
+                        S { r: Repr::V, v: phi.as_basic_value(), d: None }
+                    })
+                    .collect()
+            };
+            let l = join(self, &dl, &cl_l);
+            let cl = join(self, &dcl, &ccl);
             // `run_illuminance`: L reversed to point at the light, the lanes in the cone,
             // nothing to do for no lane.
             let to_light: Vec<S<'c>> = l.iter().map(|&x| self.neg(x)).collect();
@@ -427,10 +554,8 @@ impl<'c> Cg<'c, '_> {
                 let w = self.sel(self.cmp(FloatPredicate::OGT, ndl, zero), s, self.to(zero, s.r));
                 update(self, spec, &cl, w);
             }
-            self.b.build_unconditional_branch(latch).expect("br");
-        } else {
-            self.b.build_unconditional_branch(latch).expect("br");
         }
+        self.b.build_unconditional_branch(latch).expect("br");
 
         self.b.position_at_end(latch);
         let next = self.b.build_int_add(iv, i64t.const_int(1, false), "").expect("add");
@@ -446,6 +571,78 @@ impl<'c> Cg<'c, '_> {
             out.extend(read(self, slots));
         }
         out
+    }
+
+    /// Record `i` of `table`.
+    pub(super) fn light_record(&self, table: &LightTable<'c>, i: IntValue<'c>) -> PointerValue<'c> {
+        let i64t = self.cx.i64_type();
+        let data = i64t.const_int(size_of::<LightData>() as u64, false);
+        let record = i64t.const_int(size_of::<LightRecord>() as u64, false);
+        let size = self.b.build_select(table.records, record, data, "").expect("select").into_int_value();
+        let at = self.b.build_int_mul(i, size, "").expect("mul");
+        unsafe { self.b.build_gep(table.base, &[at], "") }.expect("gep")
+    }
+
+    /// Branches to `code_bb` when record `rec` of `table` is a light with code, else to
+    /// `data_bb` (whose data is at the record's start: [`LightRecord::data`]).
+    pub(super) fn branch_on_code(
+        &self,
+        table: &LightTable<'c>,
+        rec: PointerValue<'c>,
+        code_bb: inkwell::basic_block::BasicBlock<'c>,
+        data_bb: inkwell::basic_block::BasicBlock<'c>,
+    ) {
+        let func = self.cur_fn();
+        let check_bb = self.cx.append_basic_block(func, "light.record");
+        self.b.build_conditional_branch(table.records, check_bb, data_bb).expect("br");
+        self.b.position_at_end(check_bb);
+        let entry = self.record_code_field(rec, offset_of!(LightCode, entry), self.cx.i64_type().into());
+        let none =
+            self.b.build_int_compare(IntPredicate::EQ, entry.into_int_value(), self.cx.i64_type().const_zero(), "");
+        self.b.build_conditional_branch(none.expect("icmp"), data_bb, code_bb).expect("br");
+    }
+
+    /// The field at `off` of [`LightRecord::code`] of record `rec`, loaded as `t`.
+    fn record_code_field(
+        &self,
+        rec: PointerValue<'c>,
+        off: usize,
+        t: inkwell::types::BasicTypeEnum<'c>,
+    ) -> inkwell::values::BasicValueEnum<'c> {
+        let at = self.cx.i64_type().const_int((offset_of!(LightRecord, code) + off) as u64, false);
+        let q = unsafe { self.b.build_gep(rec, &[at], "") }.expect("gep");
+        let q = self.b.build_pointer_cast(q, t.ptr_type(AddressSpace::default()), "").expect("cast");
+        self.b.build_load(q, "").expect("load")
+    }
+
+    /// Calls the code of record `rec` ([`LightCode`]) for the points `ps` under `mask`:
+    /// the light's `Cl` and `L`.
+    pub(super) fn call_light_code(&self, rec: PointerValue<'c>, ps: &[S<'c>], mask: M<'c>) -> (Vec<S<'c>>, Vec<S<'c>>) {
+        let i64p = self.cx.i64_type().ptr_type(AddressSpace::default());
+        let f32p = self.f32t.ptr_type(AddressSpace::default());
+        let i32p = self.cx.i32_type().ptr_type(AddressSpace::default());
+        let fty = self
+            .cx
+            .void_type()
+            .fn_type(&[f32p.into(), f32p.into(), i32p.into(), self.i8p().into(), i64p.into(), f32p.into()], false);
+        let entry = self.record_code_field(rec, offset_of!(LightCode, entry), self.cx.i64_type().into());
+        let entry = self
+            .b
+            .build_int_to_ptr(entry.into_int_value(), fty.ptr_type(AddressSpace::default()), "")
+            .expect("inttoptr");
+        let ctx = self.record_code_field(rec, offset_of!(LightCode, ctx), self.i8p().into());
+        let host = self.record_code_field(rec, offset_of!(LightCode, host), i64p.into());
+        let params = self.record_code_field(rec, offset_of!(LightCode, params), f32p.into());
+        let psb = self.spill(ps, false);
+        let out = self.out_buf(6, false);
+        let m = self.mask_buf_of(mask);
+        let callee = inkwell::values::CallableValue::try_from(entry).expect("callable");
+        self.b
+            .build_call(callee, &[psb.into(), out.into(), m.into(), ctx.into(), host.into(), params.into()], "")
+            .expect("call");
+        let mut v = self.unspill(out, 6, false);
+        let l = v.split_off(3);
+        (v, l)
     }
 
     /// `pow(x, y)` for the highlight's cosine `x`, as the library computes it, without its cost

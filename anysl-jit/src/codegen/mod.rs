@@ -148,6 +148,8 @@ pub struct Cg<'c, 'm> {
     /// A light shader without an `L` variable: the slot (after the IR's) that keeps the `L`
     /// of its `illuminate`/`solar` statements for the light's output.
     light_l: Option<SlotId>,
+    /// The host callbacks the generated code calls (bit `k` for [`crate::rt::Host`] `k`).
+    pub host_used: std::cell::Cell<u64>,
 }
 
 /// Where a light call's normal comes from, as far as the code generator can tell: the same
@@ -182,6 +184,9 @@ const SHADE_NAME: &str = "anysl_shade";
 /// Name of the generated points entry.
 pub const POINTS_NAME: &str = "anysl_shade_points";
 
+/// Name of a light shader's direct entry ([`anysl_core::LightCode`]).
+pub const LIGHT_NAME: &str = "anysl_light";
+
 impl<'c, 'm> Cg<'c, 'm> {
     /// A generator for `func` with target `t`; `rt_v`/`rt_u` resolve runtime calls
     /// ([`crate::rt::rt_addr`]) for the varying float type and for `f32`.
@@ -215,6 +220,7 @@ impl<'c, 'm> Cg<'c, 'm> {
             amb_partner: ambient_partners(func),
             lights_by_renderer: false,
             light_l: None,
+            host_used: std::cell::Cell::new(0),
             shapes: HashMap::new(),
             fn_attrs: Vec::new(),
             threaded_fns: 0,

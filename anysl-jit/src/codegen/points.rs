@@ -11,7 +11,7 @@
 //! straight from registers to the caller's arrays. What does not vary stays in the context's
 //! `Globals` as the caller set it.
 
-use super::{Cg, POINTS_NAME};
+use super::{Cg, LIGHT_NAME, POINTS_NAME};
 use crate::abi::{self, GLOBAL_VALUES};
 use crate::JitError;
 use inkwell::attributes::{Attribute, AttributeLoc};
@@ -135,5 +135,62 @@ impl<'c> Cg<'c, '_> {
         self.b.position_at_end(exit);
         self.b.build_return(None).expect("ret");
         Ok(f)
+    }
+
+    /// Builds a light shader's direct entry around `shade` (which is always inlined into it):
+    /// `(ps, out, mask, ctx, host, params)` — the surface points `ps` (three values one
+    /// packet's width apart) become `P` in a globals block of zeros on the stack, as the
+    /// interpreter's light context has it, and the rest goes to `shade` as it is. Compiled
+    /// light loops call it per light ([`anysl_core::LightCode`]); LLVM forwards the zeros
+    /// and `P` into the inlined code, so no globals block is left.
+    pub(crate) fn generate_light_entry(&mut self, shade: FunctionValue<'c>) -> FunctionValue<'c> {
+        shade.add_attribute(
+            AttributeLoc::Function,
+            self.cx.create_enum_attribute(Attribute::get_named_enum_kind_id("alwaysinline"), 0),
+        );
+        let i64t = self.cx.i64_type();
+        let f32p = self.f32t.ptr_type(AddressSpace::default());
+        let fty = self.cx.void_type().fn_type(
+            &[
+                f32p.into(),
+                f32p.into(),
+                self.cx.i32_type().ptr_type(AddressSpace::default()).into(),
+                self.i8p().into(),
+                i64t.ptr_type(AddressSpace::default()).into(),
+                f32p.into(),
+            ],
+            false,
+        );
+        let f = self.m.add_function(LIGHT_NAME, fty, None);
+        self.set_fn_attrs(f);
+        let param = |k: u32| f.get_nth_param(k).expect("light entry parameter");
+        let entry = self.cx.append_basic_block(f, "entry");
+        self.b.position_at_end(entry);
+        let stride = self.stride();
+        let floats = self.layout.comp.iter().max().copied().unwrap_or(0) + stride;
+        let gbuf = self.b.build_alloca(self.f32t.array_type(floats), "globals").expect("alloca");
+        if let Some(i) = gbuf.as_instruction() {
+            let _ = i.set_alignment(64);
+        }
+        let gbuf = self.b.build_pointer_cast(gbuf, f32p, "").expect("cast");
+        let bytes = i64t.const_int(u64::from(floats) * 4, false);
+        self.b.build_memset(gbuf, 64, self.cx.i8_type().const_zero(), bytes).expect("memset");
+        let vt = self.vt();
+        let at = |cg: &Self, base: PointerValue<'c>, off: u64| {
+            let p = unsafe { cg.b.build_gep(base, &[i64t.const_int(off, false)], "") }.expect("gep");
+            cg.b.build_pointer_cast(p, cg.ptr_ty(vt), "").expect("cast")
+        };
+        let ps = param(0).into_pointer_value();
+        // `P` is the first triple of `abi::GLOBAL_ORDER`.
+        for c in 0..3u64 {
+            let v = self.b.build_load(at(self, ps, c * u64::from(stride)), "").expect("load");
+            v.as_instruction_value().map(|i| i.set_alignment(4));
+            let s = self.b.build_store(at(self, gbuf, u64::from(self.layout.comp[c as usize])), v).expect("store");
+            let _ = s.set_alignment(4);
+        }
+        let args = [gbuf.into(), param(1).into(), param(2).into(), param(3).into(), param(4).into(), param(5).into()];
+        self.b.build_call(shade, &args, "").expect("call");
+        self.b.build_return(None).expect("ret");
+        f
     }
 }

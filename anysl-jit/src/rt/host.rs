@@ -5,6 +5,7 @@
 use super::{In, Out};
 use crate::abi::{BodyFn, JitFloat};
 use anysl_core::prelude::*;
+use anysl_core::{LightRecord, Spaces};
 use core::ffi::c_void;
 use core::marker::PhantomData;
 use core::mem::MaybeUninit;
@@ -22,6 +23,10 @@ pub struct HostCtx<'a, F: ShadingFloat, C> {
     pub lights: *const LightData,
     /// The number of `lights`.
     pub n_lights: usize,
+    /// [`ShadingContext::light_records`] when the context has no lights as data, or null.
+    pub records: *const LightRecord,
+    /// The number of `records`.
+    pub n_records: usize,
     /// The renderer's context.
     pub ctx: &'a mut C,
     /// The diffuse sum of the last fused loop.
@@ -37,7 +42,11 @@ impl<'a, F: ShadingFloat, C: ShadingContext<F>> HostCtx<'a, F, C> {
             Some(l) => (l.as_ptr(), l.len()),
             None => (core::ptr::null(), 0),
         };
-        Self { lights, n_lights, ctx, lit: None }
+        let (records, n_records) = match ctx.light_records() {
+            Some(r) if lights.is_null() => (r.as_ptr(), r.len()),
+            _ => (core::ptr::null(), 0),
+        };
+        Self { lights, n_lights, records, n_records, ctx, lit: None }
     }
 }
 
@@ -59,6 +68,10 @@ pub struct KeptDiffuse<F: ShadingFloat> {
 pub const HOST_CTX_LIGHTS: u64 = 0;
 /// Byte offset of [`HostCtx::n_lights`].
 pub const HOST_CTX_N_LIGHTS: u64 = 8;
+/// Byte offset of [`HostCtx::records`].
+pub const HOST_CTX_RECORDS: u64 = 16;
+/// Byte offset of [`HostCtx::n_records`].
+pub const HOST_CTX_N_RECORDS: u64 = 24;
 
 fn same<F: ShadingFloat>(a: Vec3<F>, b: Vec3<F>, ma: F::Mask, mb: F::Mask) -> bool {
     let eq = a.x.eq(b.x) & a.y.eq(b.y) & a.z.eq(b.z);
@@ -348,7 +361,34 @@ unsafe extern "C" fn host_space<F: ShadingFloat, C: ShadingContext<F>>(
     out: *mut f32,
     aux: u32,
 ) {
-    let spaces = (*ctx.cast::<HostCtx<F, C>>()).ctx.spaces();
+    space_matrix((*ctx.cast::<HostCtx<F, C>>()).ctx.spaces(), inp, out, aux);
+}
+
+/// The callback table of a light's direct entry ([`anysl_core::LightCode`]): its `ctx` is
+/// the light's [`Spaces`]; named spaces are the only callback such code makes (the entry is
+/// generated only then), the other slots answer nothing.
+const LIGHT_HOST_TABLE: [*const (); Host::LEN] = {
+    let mut t = [light_no_host as *const (); Host::LEN];
+    t[Host::Space as usize] = light_space as *const ();
+    t
+};
+
+/// [`LIGHT_HOST_TABLE`] as compiled code reads it.
+#[must_use]
+pub fn light_host_table() -> *const usize {
+    let t: &'static [*const (); Host::LEN] = &LIGHT_HOST_TABLE;
+    t.as_ptr().cast()
+}
+
+unsafe extern "C" fn light_no_host(_: *mut c_void, _: *const u32, _: *const f32, _: *mut f32, _: u32) {}
+
+unsafe extern "C" fn light_space(ctx: *mut c_void, _: *const u32, inp: *const f32, out: *mut f32, aux: u32) {
+    space_matrix(&*ctx.cast::<Spaces>(), inp, out, aux);
+}
+
+/// The matrix of a named space (`aux`: `rt::SPACE_*` and the name's length; `inp`: the name)
+/// into `out` (16 floats).
+unsafe fn space_matrix(spaces: &Spaces, inp: *const f32, out: *mut f32, aux: u32) {
     let bytes = core::slice::from_raw_parts(inp.cast::<u8>(), (aux >> 2) as usize);
     let name = core::str::from_utf8(bytes).unwrap_or("");
     let m = match aux & 3 {

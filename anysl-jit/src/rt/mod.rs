@@ -55,8 +55,8 @@ mod noise;
 mod spline;
 
 pub use host::{
-    cast, Host, HostCtx, HostTable, KeptDiffuse, HOST_CTX_LIGHTS, HOST_CTX_N_LIGHTS, SPACE_BETWEEN, SPACE_FROM_CURRENT,
-    SPACE_SEPARATOR, SPACE_TO_CURRENT,
+    cast, light_host_table, Host, HostCtx, HostTable, KeptDiffuse, HOST_CTX_LIGHTS, HOST_CTX_N_LIGHTS,
+    HOST_CTX_N_RECORDS, HOST_CTX_RECORDS, SPACE_BETWEEN, SPACE_FROM_CURRENT, SPACE_SEPARATOR, SPACE_TO_CURRENT,
 };
 pub use math::{rt_bin, rt_geo, rt_trig_lanes, rt_un};
 use math::{rt_bin_k, rt_geo_k, rt_un_k};

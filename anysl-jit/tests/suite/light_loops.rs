@@ -103,7 +103,7 @@ fn light_sets() -> Vec<(&'static str, Vec<Light>)> {
     ]
 }
 
-fn shaders() -> Vec<(String, JitShader)> {
+pub(crate) fn shaders() -> Vec<(String, JitShader)> {
     let inc = [rsl_dir().join("include")];
     let mut v: Vec<(String, JitShader)> =
         ["plastic", "checker", "brick", "wood", "granite", "parquet", "screen", "starball", "venus", "glass"]

@@ -7,6 +7,7 @@ mod check;
 mod displacement;
 mod inline_geometry;
 mod inline_math;
+mod light_code;
 mod light_loops;
 mod light_shaders;
 mod opcount;
