@@ -221,13 +221,11 @@ struct RecordTable {
     records: Vec<LightRecord>,
 }
 
-/// `lights` as records at float type `F`, when each has code or data and at least one has
-/// code (lights that are all data are described as data).
+/// `lights` as records at float type `F` ([`LightRecord::of_all`]).
 #[cold]
 fn record_table<F: ShadingFloat, L: LightSource>(lights: &[L]) -> Option<RecordTable> {
-    let records = lights.iter().map(LightRecord::of::<F, L>).collect::<Option<Vec<_>>>()?;
     let from = (lights.as_ptr() as usize, lights.len());
-    records.iter().any(|r| !r.code.entry.is_null()).then_some(RecordTable { from, records })
+    LightRecord::of_all::<F, L>(lights).map(|records| RecordTable { from, records })
 }
 
 impl<'a, F: ShadingFloat, L: LightSource> PointContext<'a, F, L> {

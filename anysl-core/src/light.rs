@@ -138,6 +138,14 @@ impl LightRecord {
         };
         Some(Self { data, code })
     }
+
+    /// `lights` as records at float type `F`, when each has code or data and at least one has
+    /// code (lights that are all data are described as data).
+    #[must_use]
+    pub fn of_all<F: ShadingFloat, L: LightSource>(lights: &[L]) -> Option<Vec<Self>> {
+        let records = lights.iter().map(Self::of::<F, L>).collect::<Option<Vec<_>>>()?;
+        records.iter().any(|r| !r.code.entry.is_null()).then_some(records)
+    }
 }
 
 impl LightData {

@@ -20,8 +20,9 @@
 //! path tracer's material probe, [`ShadingContext::ray_depth`] `None`) runs no volume.
 
 use anysl_core::{
-    Color, DisplacementShader, Exec, GlobalSet, Globals, LightData, LightQuery, Mask, ParamError, ParamValue, Shader,
-    ShaderMeta, ShadingContext, ShadingFloat, Spaces, SurfaceOutput, SurfaceShader, Vec3, VolumeShader,
+    Color, DisplacementShader, Exec, GlobalSet, Globals, LightData, LightQuery, LightRecord, Mask, ParamError,
+    ParamValue, Shader, ShaderMeta, ShadingContext, ShadingFloat, Spaces, SurfaceOutput, SurfaceShader, Vec3,
+    VolumeShader,
 };
 use anysl_rsl::back::interp::InterpShader;
 
@@ -185,6 +186,9 @@ impl<F: ShadingFloat, C: ShadingContext<F>> ShadingContext<F> for Bumped<'_, F, 
     }
     fn lights_as_data(&self) -> Option<&[LightData]> {
         self.inner.lights_as_data()
+    }
+    fn light_records(&self) -> Option<&[LightRecord]> {
+        self.inner.light_records()
     }
     fn spaces(&self) -> &Spaces {
         self.inner.spaces()

@@ -12,8 +12,8 @@ use crate::scene::{Scene, SurfaceHit};
 use anysl_ad::Dual;
 use anysl_core::{
     in_cone, run_illuminance, sum_ambient, Color, Emission, Exec, GlobalSet, Globals, LightData, LightOutput,
-    LightQuery, LightShader, Mask, ShadingContext, ShadingFloat, Spaces, SurfaceOutput, SurfaceShader, SurfaceVisitor,
-    Vec3,
+    LightQuery, LightRecord, LightShader, Mask, ShadingContext, ShadingFloat, Spaces, SurfaceOutput, SurfaceShader,
+    SurfaceVisitor, Vec3,
 };
 use glam::Vec3A;
 
@@ -50,20 +50,42 @@ pub struct Tracer<'a, S, L> {
 #[derive(Clone, Debug, Default)]
 pub struct LightTables {
     per_surface: Vec<Option<Vec<LightData>>>,
+    /// Per surface slot, its lights as records at float type `records_of` where they are not
+    /// all data ([`LightRecord::of_all`]: some have code, such as `.sl` lights the JIT compiled).
+    records: Vec<Option<Vec<LightRecord>>>,
+    records_of: Option<core::any::TypeId>,
 }
 
 impl LightTables {
-    /// The tables of `scene`'s surface slots.
+    /// The tables of `scene`'s surface slots, with light records for float type `F` (the
+    /// type the renderer shades with).
     #[must_use]
-    pub fn of<S, L: LightShader>(scene: &Scene<S, L>) -> Self {
+    pub fn of<F: ShadingFloat, S, L: LightShader>(scene: &Scene<S, L>) -> Self {
+        let lights_of = |s: u32| match scene.surface_lights.get(s as usize) {
+            Some(Some(lights)) => &lights[..],
+            _ => &scene.lights[..],
+        };
         let all = LightData::of_all(&scene.lights);
-        let per_surface = (0..scene.surfaces.len() as u32)
+        let per_surface: Vec<Option<Vec<LightData>>> = (0..scene.surfaces.len() as u32)
             .map(|s| match scene.surface_lights.get(s as usize) {
                 Some(Some(lights)) => LightData::of_all(lights),
                 _ => all.clone(),
             })
             .collect();
-        Self { per_surface }
+        let records = (0..scene.surfaces.len() as u32)
+            .map(|s| if per_surface[s as usize].is_some() { None } else { LightRecord::of_all::<F, L>(lights_of(s)) })
+            .collect();
+        Self { per_surface, records, records_of: Some(core::any::TypeId::of::<F>()) }
+    }
+
+    /// Surface slot `surface`'s lights as records at float type `F`, if the tables have them.
+    #[inline(always)]
+    #[must_use]
+    pub fn records_for<F: ShadingFloat>(&self, surface: u32) -> Option<&[LightRecord]> {
+        if Some(core::any::TypeId::of::<F>()) != self.records_of {
+            return None;
+        }
+        self.records.get(surface as usize).and_then(Option::as_deref)
     }
 
     /// Surface slot `surface`'s lights as data, if each has a description.
@@ -773,6 +795,17 @@ impl<F: ShadingFloat, S: SurfaceShader, L: LightShader> ShadingContext<F> for Sc
             None
         } else {
             self.tracer.data_for::<F>(self.surface)
+        }
+    }
+
+    /// Without shadow rays, the lights as records where some have code (compiled `.sl`
+    /// lights): code that runs the light loops itself calls them.
+    #[inline(always)]
+    fn light_records(&self) -> Option<&[LightRecord]> {
+        if self.tracer.shadows {
+            None
+        } else {
+            self.tracer.light_data.records_for::<F>(self.surface)
         }
     }
 

@@ -44,7 +44,7 @@ where
     let n = opts.grid();
     let weight = 1.0 / (n * n) as f32;
     let footprint = 1.0 / n as f32;
-    let light_data = LightTables::of(scene);
+    let light_data = LightTables::of::<P, _, _>(scene);
     let tracer = Tracer::new(scene, opts.shadows, &light_data);
     let label = format!("scalar {}", P::NAME);
 

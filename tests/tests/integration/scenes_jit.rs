@@ -168,6 +168,45 @@ fn a_sl_light_shader_runs_compiled_in_the_scene() {
 }
 
 #[test]
+fn compiled_surfaces_call_sl_lights_directly_without_shadows() {
+    // `.sl` surface and lights (pointlight, gobo in its turned "shader" space) and a standard
+    // light described as data: without shadow rays the renderers hand the lights to the
+    // compiled surface as records, whose loops call the lights' code; the picture is the
+    // interpreter's.
+    let rib = "Format 48 36 1 PixelSamples 1 1 PixelFilter \"box\" 1 1\n\
+               Projection \"perspective\" \"fov\" 40 Translate 0 -0.2 7 Rotate -20 1 0 0\n\
+               WorldBegin LightSource \"ambientlight\" 1 \"intensity\" 0.06\n\
+               LightSource \"pointlight\" 2 \"from\" [2 3 -2] \"intensity\" 12\n\
+               TransformBegin Translate 0 5 0 Rotate 90 1 0 0\n\
+               LightSource \"gobo\" 3 \"intensity\" 30 \"frequency\" 5 TransformEnd\n\
+               Surface \"plastic\" \"roughness\" 0.15 Sphere 1 -1 1 360\n\
+               Translate 0 -1 0 Rotate -90 1 0 0 Disk 0 5 360 WorldEnd";
+    let frame = &frames("direct.rib", rib, None)[0];
+    let dirs = vec![repo().join("scenes"), repo().join("shaders/rsl")];
+    let inc = vec![repo().join("shaders/rsl/include")];
+    let mut jit = Surfaces::new(ShaderLibrary::new(dirs.clone(), inc.clone()), |m| {
+        JitShader::new(m, JitOptions::default()).map_err(|e| e.to_string())
+    });
+    let mut interp = Surfaces::interpreter(ShaderLibrary::new(dirs, inc));
+    let opts = RenderOptions { threads: 1, shadows: false, ..RenderOptions::default() };
+    let fs = frame_scene(frame, &mut jit).unwrap_or_else(|e| panic!("{e}"));
+    let fi = frame_scene(frame, &mut interp).unwrap_or_else(|e| panic!("{e}"));
+    let tables = anysl_renderers::shading::LightTables::of::<F32x8, _, _>(&fs.scene);
+    assert_eq!(tables.records_for::<F32x8>(0).map(<[_]>::len), Some(3), "the lights as records");
+    for packet in [false, true] {
+        let (a, b) = if packet {
+            (render_packet::<F32x8, _, _>(&fs.scene, &opts), render_packet::<F32x8, _, _>(&fi.scene, &opts))
+        } else {
+            (render_scalar(&fs.scene, &opts), render_scalar(&fi.scene, &opts))
+        };
+        let (a, b) = (fs.finish(&frame.film, &a), fi.finish(&frame.film, &b));
+        let p = psnr(&a, &b);
+        assert!(p >= 50.0, "packet {packet}: JIT against interpreter {p:.1} dB");
+        assert!(a.iter().any(|px| px[0] > 0.05), "packet {packet}: nothing is lit");
+    }
+}
+
+#[test]
 fn depth_is_zero_at_the_near_and_one_at_the_far_clipping_plane() {
     let dir = std::env::temp_dir().join(format!("anysl-tests-depth-{}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("temp dir");
