@@ -27,13 +27,13 @@ use inkwell::{AddressSpace, FloatPredicate, IntPredicate};
 /// no-wider-than-a-hemisphere mask and the admits-everything mask.
 pub(super) type ConeCode<'c> = (Vec<S<'c>>, S<'c>, M<'c>, M<'c>);
 
-/// The lights a compiled loop visits ([`Cg::light_table`]): `n` records from `base`, each a
+/// The lights a compiled loop visits ([`Cg::light_tables`]): `n` records from `base`, each a
 /// [`LightData`] or — when `records` — a [`LightRecord`] (its data at the start).
 #[derive(Clone, Copy)]
 pub(super) struct LightTable<'c> {
     pub(super) base: PointerValue<'c>,
     pub(super) n: IntValue<'c>,
-    pub(super) records: IntValue<'c>,
+    pub(super) records: bool,
 }
 
 const _: () = assert!(offset_of!(LightRecord, data) == 0);
@@ -64,37 +64,45 @@ impl<'c> Cg<'c, '_> {
             _ => Sums { specular: false, diffuse: false, ambient: true },
         };
         let func = self.cur_fn();
-        let table = self.light_table();
-        let inline_bb = self.cx.append_basic_block(func, "lights.data");
-        let host_bb = self.cx.append_basic_block(func, "lights.host");
         let join = self.cx.append_basic_block(func, "lights.join");
-        let none = self.b.build_is_null(table.base, "").expect("isnull");
-        self.b.build_conditional_branch(none, host_bb, inline_bb).expect("br");
-        self.b.position_at_end(inline_bb);
-        let a = self.light_loop(sums, args, table);
-        let a_end = self.b.get_insert_block().expect("positioned");
-        self.b.build_unconditional_branch(join).expect("br");
-        self.b.position_at_end(host_bb);
+        let mut incoming = Vec::new();
+        for table in self.light_tables() {
+            let run_bb = self.cx.append_basic_block(func, "lights.inline");
+            let next_bb = self.cx.append_basic_block(func, "lights.other");
+            let none = self.b.build_is_null(table.base, "").expect("isnull");
+            self.b.build_conditional_branch(none, next_bb, run_bb).expect("br");
+            self.b.position_at_end(run_bb);
+            let a = self.light_loop(sums, args, table);
+            incoming.push((a, self.b.get_insert_block().expect("positioned")));
+            self.b.build_unconditional_branch(join).expect("br");
+            self.b.position_at_end(next_bb);
+        }
         let h = self.host_call(idx, aux, args, n_out);
-        let h_end = self.b.get_insert_block().expect("positioned");
+        incoming.push((h, self.b.get_insert_block().expect("positioned")));
         self.b.build_unconditional_branch(join).expect("br");
         self.b.position_at_end(join);
-        debug_assert_eq!(a.len(), h.len());
-        a.iter()
-            .zip(&h)
-            .map(|(x, y)| {
-                let (x, y) = (self.to(*x, Repr::V).v, self.to(*y, Repr::V).v);
+        (0..n_out)
+            .map(|k| {
                 let phi = self.b.build_phi(self.vt(), "").expect("phi");
-                phi.add_incoming(&[(&x, a_end), (&y, h_end)]);
+                for (vals, bb) in &incoming {
+                    // Each value in the full varying representation, made in its own block.
+                    let term = bb.get_terminator().expect("branch");
+                    self.b.position_before(&term);
+                    let v = self.to(vals[k], Repr::V).v;
+                    phi.add_incoming(&[(&v, *bb)]);
+                }
+                self.b.position_at_end(join);
                 S { r: Repr::V, v: phi.as_basic_value(), d: None }
             })
             .collect()
     }
 
-    /// The context's lights as the compiled code finds them in [`crate::rt::HostCtx`]: its
-    /// lights as data when it has them, else its light records, else none (a null base: the
-    /// renderer's loops must be called).
-    pub(super) fn light_table(&self) -> LightTable<'c> {
+    /// The tables of lights the compiled code finds in [`crate::rt::HostCtx`], each with a
+    /// loop of its own: the context's lights as data, and (for the variants without
+    /// derivatives) its light records; a null base: the context has no such table. With
+    /// neither, the renderer's loops must be called. The two loops are apart so that the data
+    /// lights' loop has no call in it (a call would make the loop's live vectors spill).
+    pub(super) fn light_tables(&self) -> Vec<LightTable<'c>> {
         let ctx = self.st().ctx.into_pointer_value();
         let word = |cg: &Self, off: u64, t: inkwell::types::BasicTypeEnum<'c>| {
             let p = unsafe { cg.b.build_gep(ctx, &[cg.cx.i64_type().const_int(off, false)], "") }.expect("gep");
@@ -103,16 +111,13 @@ impl<'c> Cg<'c, '_> {
         };
         let lights = word(self, rt::HOST_CTX_LIGHTS, self.i8p().into()).into_pointer_value();
         let n = word(self, rt::HOST_CTX_N_LIGHTS, self.cx.i64_type().into()).into_int_value();
-        let recs = word(self, rt::HOST_CTX_RECORDS, self.i8p().into()).into_pointer_value();
-        let n_recs = word(self, rt::HOST_CTX_N_RECORDS, self.cx.i64_type().into()).into_int_value();
-        if self.t.dual {
-            // Lights have code only for the variants without derivatives.
-            return LightTable { base: lights, n, records: self.cx.bool_type().const_zero() };
+        let mut tables = vec![LightTable { base: lights, n, records: false }];
+        if !self.t.dual {
+            let recs = word(self, rt::HOST_CTX_RECORDS, self.i8p().into()).into_pointer_value();
+            let n_recs = word(self, rt::HOST_CTX_N_RECORDS, self.cx.i64_type().into()).into_int_value();
+            tables.push(LightTable { base: recs, n: n_recs, records: true });
         }
-        let records = self.b.build_is_null(lights, "").expect("isnull");
-        let base = self.b.build_select(records, recs, lights, "").expect("select").into_pointer_value();
-        let n = self.b.build_select(records, n_recs, n, "").expect("select").into_int_value();
-        LightTable { base, n, records }
+        tables
     }
 
     /// `ConeTest::new(axis, angle)`: the axis, `cos²(angle)·|axis|²`, whether the cone is no
@@ -193,14 +198,16 @@ impl<'c> Cg<'c, '_> {
         self.b.position_at_end(rec_bb);
         let rec = self.light_record(&table, iv);
         let data_bb = self.cx.append_basic_block(func, "illum.data");
-        let code_bb = self.cx.append_basic_block(func, "illum.code");
-        // Records with code exist only for the variants without derivatives.
-        let with_code = !self.t.dual;
-        if with_code {
+        // Records may have code (the records table; never for the variants with derivatives).
+        let with_code = table.records;
+        let code_bb = if with_code {
+            let code_bb = self.cx.append_basic_block(func, "illum.code");
             self.branch_on_code(&table, rec, code_bb, data_bb);
+            Some(code_bb)
         } else {
             self.b.build_unconditional_branch(data_bb).expect("br");
-        }
+            None
+        };
         self.b.position_at_end(data_bb);
         let field = |cg: &Self, off: usize, t: inkwell::types::BasicTypeEnum<'c>| {
             let q = unsafe { cg.b.build_gep(rec, &[i64t.const_int(off as u64, false)], "") }.expect("gep");
@@ -268,7 +275,7 @@ impl<'c> Cg<'c, '_> {
             let data_end = self.b.get_insert_block().expect("positioned");
             let sum_bb = self.cx.append_basic_block(func, "illum.lit");
             self.b.build_unconditional_branch(sum_bb).expect("br");
-            self.b.position_at_end(code_bb);
+            self.b.position_at_end(code_bb.expect("made with the records"));
             let emission = self.record_code_field(rec, offset_of!(LightCode, emission), self.cx.i32_type().into());
             let amb = Emission::Ambient as u64;
             let is_amb = self
@@ -468,56 +475,68 @@ impl<'c> Cg<'c, '_> {
         // A light with code: `ambient()` takes an ambient light's `Cl` for the live lanes
         // (`sum_ambient`), `illuminance` a directed light's `Cl` and `L`; a light that does
         // not emit so is not called.
-        self.b.position_at_end(code_bb);
-        let emission = self.record_code_field(rec, offset_of!(LightCode, emission), self.cx.i32_type().into());
-        let is_amb = self
-            .b
-            .build_int_compare(IntPredicate::EQ, emission.into_int_value(), self.i32c(Emission::Ambient as u64), "")
-            .expect("icmp");
-        let code_amb_bb = self.cx.append_basic_block(func, "light.code.ambient");
-        let code_dir_bb = self.cx.append_basic_block(func, "light.code.directed");
-        self.b
-            .build_conditional_branch(
-                is_amb,
-                if sums.ambient { code_amb_bb } else { latch },
-                if directed { code_dir_bb } else { latch },
-            )
-            .expect("br");
-        self.b.position_at_end(code_amb_bb);
-        if let Some(amb) = amb {
-            let (cl, _) = self.call_light_code(rec, &p, m0);
-            for (c, slot) in amb.iter().enumerate() {
-                let old = S { r: Repr::V, v: self.b.build_load(*slot, "").expect("load"), d: None };
-                let new = self.add(old, self.sel(m0, cl[c], self.to(zero, Repr::V)));
-                self.b.build_store(*slot, self.to(new, Repr::V).v).expect("store");
+        let code_lit = if table.records {
+            self.b.position_at_end(code_bb);
+            let emission = self.record_code_field(rec, offset_of!(LightCode, emission), self.cx.i32_type().into());
+            let is_amb = self
+                .b
+                .build_int_compare(IntPredicate::EQ, emission.into_int_value(), self.i32c(Emission::Ambient as u64), "")
+                .expect("icmp");
+            let code_amb_bb = self.cx.append_basic_block(func, "light.code.ambient");
+            let code_dir_bb = self.cx.append_basic_block(func, "light.code.directed");
+            self.b
+                .build_conditional_branch(
+                    is_amb,
+                    if sums.ambient { code_amb_bb } else { latch },
+                    if directed { code_dir_bb } else { latch },
+                )
+                .expect("br");
+            self.b.position_at_end(code_amb_bb);
+            if let Some(amb) = amb {
+                let (cl, _) = self.call_light_code(rec, &p, m0);
+                for (c, slot) in amb.iter().enumerate() {
+                    let old = S { r: Repr::V, v: self.b.build_load(*slot, "").expect("load"), d: None };
+                    let new = self.add(old, self.sel(m0, cl[c], self.to(zero, Repr::V)));
+                    self.b.build_store(*slot, self.to(new, Repr::V).v).expect("store");
+                }
             }
-        }
-        self.b.build_unconditional_branch(latch).expect("br");
-        self.b.position_at_end(code_dir_bb);
-        let code_lit = if directed {
-            let (cl, l) = self.call_light_code(rec, &p, m0);
-            let end = self.b.get_insert_block().expect("positioned");
-            self.b.build_unconditional_branch(sum_bb).expect("br");
-            Some((l, cl, end))
-        } else {
             self.b.build_unconditional_branch(latch).expect("br");
+            self.b.position_at_end(code_dir_bb);
+            let code_lit = if directed {
+                let (cl, l) = self.call_light_code(rec, &p, m0);
+                let end = self.b.get_insert_block().expect("positioned");
+                self.b.build_unconditional_branch(sum_bb).expect("br");
+                Some((l, cl, end))
+            } else {
+                self.b.build_unconditional_branch(latch).expect("br");
+                None
+            };
+            code_lit
+        } else {
+            self.b.position_at_end(code_bb);
+            self.b.build_unreachable().expect("unreachable");
             None
         };
 
         self.b.position_at_end(sum_bb);
-        if let (Some((dl, dcl, dend)), Some((cl_l, ccl, cend))) = (data_lit, code_lit) {
-            let join = |cg: &Self, a: &[S<'c>], b: &[S<'c>]| -> Vec<S<'c>> {
-                a.iter()
-                    .zip(b)
-                    .map(|(x, y)| {
-                        let phi = cg.b.build_phi(vt, "").expect("phi");
-                        phi.add_incoming(&[(&x.v, dend), (&y.v, cend)]);
-                        S { r: Repr::V, v: phi.as_basic_value(), d: None }
-                    })
-                    .collect()
-            };
-            let l = join(self, &dl, &cl_l);
-            let cl = join(self, &dcl, &ccl);
+        let lit = match (data_lit, code_lit) {
+            (Some((dl, dcl, dend)), Some((cl_l, ccl, cend))) => {
+                let join = |cg: &Self, a: &[S<'c>], b: &[S<'c>]| -> Vec<S<'c>> {
+                    a.iter()
+                        .zip(b)
+                        .map(|(x, y)| {
+                            let phi = cg.b.build_phi(vt, "").expect("phi");
+                            phi.add_incoming(&[(&x.v, dend), (&y.v, cend)]);
+                            S { r: Repr::V, v: phi.as_basic_value(), d: None }
+                        })
+                        .collect()
+                };
+                Some((join(self, &dl, &cl_l), join(self, &dcl, &ccl)))
+            }
+            (Some((l, cl, _)), None) => Some((l, cl)),
+            _ => None,
+        };
+        if let Some((l, cl)) = lit {
             // `run_illuminance`: L reversed to point at the light, the lanes in the cone,
             // nothing to do for no lane.
             let to_light: Vec<S<'c>> = l.iter().map(|&x| self.neg(x)).collect();
@@ -576,9 +595,8 @@ impl<'c> Cg<'c, '_> {
     /// Record `i` of `table`.
     pub(super) fn light_record(&self, table: &LightTable<'c>, i: IntValue<'c>) -> PointerValue<'c> {
         let i64t = self.cx.i64_type();
-        let data = i64t.const_int(size_of::<LightData>() as u64, false);
-        let record = i64t.const_int(size_of::<LightRecord>() as u64, false);
-        let size = self.b.build_select(table.records, record, data, "").expect("select").into_int_value();
+        let size = if table.records { size_of::<LightRecord>() } else { size_of::<LightData>() };
+        let size = i64t.const_int(size as u64, false);
         let at = self.b.build_int_mul(i, size, "").expect("mul");
         unsafe { self.b.build_gep(table.base, &[at], "") }.expect("gep")
     }
@@ -592,10 +610,10 @@ impl<'c> Cg<'c, '_> {
         code_bb: inkwell::basic_block::BasicBlock<'c>,
         data_bb: inkwell::basic_block::BasicBlock<'c>,
     ) {
-        let func = self.cur_fn();
-        let check_bb = self.cx.append_basic_block(func, "light.record");
-        self.b.build_conditional_branch(table.records, check_bb, data_bb).expect("br");
-        self.b.position_at_end(check_bb);
+        if !table.records {
+            self.b.build_unconditional_branch(data_bb).expect("br");
+            return;
+        }
         let entry = self.record_code_field(rec, offset_of!(LightCode, entry), self.cx.i64_type().into());
         let none =
             self.b.build_int_compare(IntPredicate::EQ, entry.into_int_value(), self.cx.i64_type().const_zero(), "");

@@ -42,9 +42,10 @@ impl<'a, F: ShadingFloat, C: ShadingContext<F>> HostCtx<'a, F, C> {
             Some(l) => (l.as_ptr(), l.len()),
             None => (core::ptr::null(), 0),
         };
-        let (records, n_records) = match ctx.light_records() {
-            Some(r) if lights.is_null() => (r.as_ptr(), r.len()),
-            _ => (core::ptr::null(), 0),
+        let records = if lights.is_null() { ctx.light_records() } else { None };
+        let (records, n_records) = match records {
+            Some(r) => (r.as_ptr(), r.len()),
+            None => (core::ptr::null(), 0),
         };
         Self { lights, n_lights, records, n_records, ctx, lit: None }
     }
