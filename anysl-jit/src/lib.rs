@@ -222,6 +222,11 @@ pub struct JitOptions {
     /// ([`CompiledShader::op_counts`], [`JitShader::op_counts`]). For measuring, not for
     /// shading fast: every block executed pays an atomic add per kind it counts.
     pub count_ops: bool,
+    /// Compile the light loops for contexts that hand their lights over as light records
+    /// (`ShadingContext::light_records`: some lights have code, such as `.sl` lights compiled
+    /// here) instead of as data. [`JitShader`] compiles this flavour of a variant beside the
+    /// other, and only when a context with records first runs it.
+    pub light_records: bool,
 }
 
 impl JitOptions {
@@ -238,6 +243,7 @@ impl JitOptions {
             points_opt_level: 3,
             output_params: false,
             count_ops: false,
+            light_records: false,
         }
     }
 }
@@ -453,6 +459,8 @@ pub struct PointsLayout {
     pub varying: u64,
     /// Output components written (1 to 6).
     pub outputs: usize,
+    /// The light loops read light records ([`JitOptions::light_records`]).
+    pub light_records: bool,
 }
 
 /// A shader compiled as a loop over the packets of a point set ([`abi::PointsFn`]).
@@ -516,7 +524,7 @@ pub fn compile_points(
     if module.kind != anysl_rsl::ir::ShaderKind::Surface {
         return Err(JitError(format!("the points entry shades surface shaders, not {:?}", module.kind)));
     }
-    let opts = JitOptions { opt_level: opts.points_opt_level, ..opts.clone() };
+    let opts = JitOptions { opt_level: opts.points_opt_level, light_records: layout.light_records, ..opts.clone() };
     let (addr, _, stats, llvm_ir, owned) = build(module, values, variant, &opts, keep_ir, Some(layout))?;
     // SAFETY: the function was generated with the `PointsFn` signature.
     let f: PointsFn = unsafe { std::mem::transmute::<usize, PointsFn>(addr) };
@@ -555,6 +563,7 @@ fn build(
         inline_noise: opts.inline_noise,
         runtime_params: !opts.specialize,
         output_params: opts.output_params,
+        light_records: opts.light_records,
     };
     let mut cg = Cg::new(cref, &m.func, target, variant.rt_resolver(), Variant::F32.rt_resolver());
     let (cpu, features) = if opts.host_cpu {

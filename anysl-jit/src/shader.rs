@@ -66,6 +66,8 @@ pub struct JitShader {
     /// Compiler settings.
     pub opts: JitOptions,
     variants: [Slot; Variant::ALL.len()],
+    /// The variants compiled for contexts with light records ([`JitOptions::light_records`]).
+    record_variants: [Slot; Variant::ALL.len()],
     /// Variants that also write the output parameters ([`JitShader::eval_point`]).
     eval_variants: [Slot; Variant::ALL.len()],
     points: PointsCache,
@@ -82,6 +84,7 @@ impl Clone for JitShader {
             values: self.values.clone(),
             opts: self.opts.clone(),
             variants: Default::default(),
+            record_variants: Default::default(),
             eval_variants: Default::default(),
             points: PointsCache::default(),
             interp: self.interp.clone(),
@@ -112,6 +115,7 @@ impl JitShader {
             values,
             opts,
             variants: Default::default(),
+            record_variants: Default::default(),
             eval_variants: Default::default(),
             points: PointsCache::default(),
             interp: InterpShader::new(Arc::new(program)),
@@ -157,6 +161,26 @@ impl JitShader {
     fn variant_ref(&self, v: Variant) -> Result<&Arc<CompiledShader>, &String> {
         self.variants[v.index()]
             .get_or_init(|| compile(&self.module, &self.values, v, &self.opts).map(Arc::new).map_err(|e| e.to_string()))
+            .as_ref()
+    }
+
+    /// The variant `v` for a run in `ctx`: compiled for light records
+    /// ([`JitOptions::light_records`]) when the context hands its lights over so, else the
+    /// plain variant (compiling it now if needed).
+    #[inline]
+    fn variant_in<F: ShadingFloat, C: ShadingContext<F>>(
+        &self,
+        v: Variant,
+        ctx: &C,
+    ) -> Result<&Arc<CompiledShader>, &String> {
+        if v.dual() || ctx.lights_as_data().is_some() || ctx.light_records().is_none() {
+            return self.variant_ref(v);
+        }
+        self.record_variants[v.index()]
+            .get_or_init(|| {
+                let opts = JitOptions { light_records: true, ..self.opts.clone() };
+                compile(&self.module, &self.values, v, &opts).map(Arc::new).map_err(|e| e.to_string())
+            })
             .as_ref()
     }
 
@@ -301,7 +325,9 @@ impl JitShader {
         if n == 0 {
             return Ok(true);
         }
-        let cp = self.points_variant(v, PointsLayout { varying: mask, outputs: out.len() }).map_err(JitError)?;
+        let light_records = ctx.lights_as_data().is_none() && ctx.light_records().is_some();
+        let layout = PointsLayout { varying: mask, outputs: out.len(), light_records };
+        let cp = self.points_variant(v, layout).map_err(JitError)?;
         let mut dst = [core::ptr::null_mut::<f32>(); 6];
         for (d, o) in dst.iter_mut().zip(out.iter_mut()) {
             *d = o.as_mut_ptr();
@@ -401,7 +427,7 @@ impl JitShader {
             return None;
         }
         let mut n = OpCounts::default();
-        for slot in [&self.variants[v.index()], &self.eval_variants[v.index()]] {
+        for slot in [&self.variants[v.index()], &self.record_variants[v.index()], &self.eval_variants[v.index()]] {
             if let Some(Ok(c)) = slot.get() {
                 n += c.op_counts().unwrap_or_default();
             }
@@ -417,7 +443,7 @@ impl JitShader {
 
     /// Sets the operation counts of every compiled variant to zero ([`JitShader::op_counts`]).
     pub fn reset_op_counts(&self) {
-        for slot in self.variants.iter().chain(&self.eval_variants) {
+        for slot in self.variants.iter().chain(&self.record_variants).chain(&self.eval_variants) {
             if let Some(Ok(c)) = slot.get() {
                 c.reset_op_counts();
             }
@@ -433,7 +459,8 @@ impl JitShader {
     /// The variants compiled so far.
     #[must_use]
     pub fn compiled(&self) -> Vec<Variant> {
-        Variant::ALL.into_iter().filter(|v| matches!(self.variants[v.index()].get(), Some(Ok(_)))).collect()
+        let done = |slots: &[Slot], v: Variant| matches!(slots[v.index()].get(), Some(Ok(_)));
+        Variant::ALL.into_iter().filter(|&v| done(&self.variants, v) || done(&self.record_variants, v)).collect()
     }
 
     /// The interpreter instance used for other float types.
@@ -552,6 +579,7 @@ impl Shader for JitShader {
         if self.opts.specialize {
             // Parameters are compiled in: recompile on next use.
             self.variants = Default::default();
+            self.record_variants = Default::default();
             self.eval_variants = Default::default();
             self.points = PointsCache::default();
         }
@@ -599,7 +627,7 @@ impl SurfaceShader for JitShader {
 
     fn shade<F: ShadingFloat, C: ShadingContext<F>>(&self, ctx: &mut C, e: &mut Exec<F>) -> SurfaceOutput<F> {
         if let Some(v) = variant_of::<F>() {
-            if let Ok(cs) = self.variant_ref(v) {
+            if let Ok(cs) = self.variant_in(v, ctx) {
                 return_as_variant!(v, F, |G| self.run::<F, C, G>(cs, ctx, e));
                 unreachable!(
                     "variant_of::<{}>() named {v:?}, a type of other lanes or size",
@@ -616,7 +644,7 @@ impl DisplacementShader for JitShader {
     /// interpreter for other float types.
     fn displace<F: ShadingFloat, C: ShadingContext<F>>(&self, ctx: &mut C, e: &mut Exec<F>) -> (Vec3<F>, Vec3<F>) {
         if let Some(v) = variant_of::<F>() {
-            if let Ok(cs) = self.variant_ref(v) {
+            if let Ok(cs) = self.variant_in(v, ctx) {
                 return_as_variant!(v, F, |G| self.run_displace::<F, C, G>(cs, ctx, e));
                 unreachable!(
                     "variant_of::<{}>() named {v:?}, a type of other lanes or size",

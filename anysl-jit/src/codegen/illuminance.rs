@@ -26,19 +26,18 @@ impl<'c> Cg<'c, '_> {
         // renderer's callback reads — is built there only, so the shader's own variables stay
         // registers).
         let join_bb = if category.is_none() && !self.lights_by_renderer {
+            let table = self.light_table();
+            let data_bb = self.cx.append_basic_block(self.cur_fn(), "illuminance.data");
+            let host_bb = self.cx.append_basic_block(self.cur_fn(), "illuminance.host");
             let join_bb = self.cx.append_basic_block(self.cur_fn(), "illuminance.join");
-            for table in self.light_tables() {
-                let data_bb = self.cx.append_basic_block(self.cur_fn(), "illuminance.data");
-                let next_bb = self.cx.append_basic_block(self.cur_fn(), "illuminance.other");
-                let none = self.b.build_is_null(table.base, "").expect("isnull");
-                self.b.build_conditional_branch(none, next_bb, data_bb).expect("br");
-                self.b.position_at_end(data_bb);
-                let saved_vals = self.vals.clone();
-                self.illuminance_over_data(position, cone, body, table)?;
-                self.vals = saved_vals;
-                self.b.build_unconditional_branch(join_bb).expect("br");
-                self.b.position_at_end(next_bb);
-            }
+            let none = self.b.build_is_null(table.base, "").expect("isnull");
+            self.b.build_conditional_branch(none, host_bb, data_bb).expect("br");
+            self.b.position_at_end(data_bb);
+            let saved_vals = self.vals.clone();
+            self.illuminance_over_data(position, cone, body, table)?;
+            self.vals = saved_vals;
+            self.b.build_unconditional_branch(join_bb).expect("br");
+            self.b.position_at_end(host_bb);
             Some(join_bb)
         } else {
             None

@@ -27,7 +27,7 @@ use inkwell::{AddressSpace, FloatPredicate, IntPredicate};
 /// no-wider-than-a-hemisphere mask and the admits-everything mask.
 pub(super) type ConeCode<'c> = (Vec<S<'c>>, S<'c>, M<'c>, M<'c>);
 
-/// The lights a compiled loop visits ([`Cg::light_tables`]): `n` records from `base`, each a
+/// The lights a compiled loop visits ([`Cg::light_table`]): `n` records from `base`, each a
 /// [`LightData`] or — when `records` — a [`LightRecord`] (its data at the start).
 #[derive(Clone, Copy)]
 pub(super) struct LightTable<'c> {
@@ -64,60 +64,55 @@ impl<'c> Cg<'c, '_> {
             _ => Sums { specular: false, diffuse: false, ambient: true },
         };
         let func = self.cur_fn();
+        let table = self.light_table();
+        let inline_bb = self.cx.append_basic_block(func, "lights.inline");
+        let host_bb = self.cx.append_basic_block(func, "lights.host");
         let join = self.cx.append_basic_block(func, "lights.join");
-        let mut incoming = Vec::new();
-        for table in self.light_tables() {
-            let run_bb = self.cx.append_basic_block(func, "lights.inline");
-            let next_bb = self.cx.append_basic_block(func, "lights.other");
-            let none = self.b.build_is_null(table.base, "").expect("isnull");
-            self.b.build_conditional_branch(none, next_bb, run_bb).expect("br");
-            self.b.position_at_end(run_bb);
-            let a = self.light_loop(sums, args, table);
-            incoming.push((a, self.b.get_insert_block().expect("positioned")));
-            self.b.build_unconditional_branch(join).expect("br");
-            self.b.position_at_end(next_bb);
-        }
+        let none = self.b.build_is_null(table.base, "").expect("isnull");
+        self.b.build_conditional_branch(none, host_bb, inline_bb).expect("br");
+        self.b.position_at_end(inline_bb);
+        let a = self.light_loop(sums, args, table);
+        let a_end = self.b.get_insert_block().expect("positioned");
+        self.b.build_unconditional_branch(join).expect("br");
+        self.b.position_at_end(host_bb);
         let h = self.host_call(idx, aux, args, n_out);
-        incoming.push((h, self.b.get_insert_block().expect("positioned")));
+        let h_end = self.b.get_insert_block().expect("positioned");
         self.b.build_unconditional_branch(join).expect("br");
         self.b.position_at_end(join);
-        (0..n_out)
-            .map(|k| {
+        debug_assert_eq!(a.len(), h.len());
+        a.iter()
+            .zip(&h)
+            .map(|(x, y)| {
+                let (x, y) = (self.to(*x, Repr::V).v, self.to(*y, Repr::V).v);
                 let phi = self.b.build_phi(self.vt(), "").expect("phi");
-                for (vals, bb) in &incoming {
-                    // Each value in the full varying representation, made in its own block.
-                    let term = bb.get_terminator().expect("branch");
-                    self.b.position_before(&term);
-                    let v = self.to(vals[k], Repr::V).v;
-                    phi.add_incoming(&[(&v, *bb)]);
-                }
-                self.b.position_at_end(join);
+                phi.add_incoming(&[(&x, a_end), (&y, h_end)]);
                 S { r: Repr::V, v: phi.as_basic_value(), d: None }
             })
             .collect()
     }
 
-    /// The tables of lights the compiled code finds in [`crate::rt::HostCtx`], each with a
-    /// loop of its own: the context's lights as data, and (for the variants without
-    /// derivatives) its light records; a null base: the context has no such table. With
-    /// neither, the renderer's loops must be called. The two loops are apart so that the data
-    /// lights' loop has no call in it (a call would make the loop's live vectors spill).
-    pub(super) fn light_tables(&self) -> Vec<LightTable<'c>> {
+    /// The table of lights the compiled code finds in [`crate::rt::HostCtx`]: the context's
+    /// lights as data, or — in the flavour compiled for them ([`crate::JitOptions::light_records`],
+    /// never for the variants with derivatives) — its light records; a null base: the context
+    /// has no such table, and the renderer's loops must be called. The flavours are compiled
+    /// apart, when a context needs them: the loop over data has no call in it (a call would
+    /// make the loop's live vectors spill) and the shader no second loop to compile.
+    pub(super) fn light_table(&self) -> LightTable<'c> {
         let ctx = self.st().ctx.into_pointer_value();
         let word = |cg: &Self, off: u64, t: inkwell::types::BasicTypeEnum<'c>| {
             let p = unsafe { cg.b.build_gep(ctx, &[cg.cx.i64_type().const_int(off, false)], "") }.expect("gep");
             let p = cg.b.build_pointer_cast(p, t.ptr_type(AddressSpace::default()), "").expect("cast");
             cg.b.build_load(p, "").expect("load")
         };
-        let lights = word(self, rt::HOST_CTX_LIGHTS, self.i8p().into()).into_pointer_value();
-        let n = word(self, rt::HOST_CTX_N_LIGHTS, self.cx.i64_type().into()).into_int_value();
-        let mut tables = vec![LightTable { base: lights, n, records: false }];
-        if !self.t.dual {
-            let recs = word(self, rt::HOST_CTX_RECORDS, self.i8p().into()).into_pointer_value();
-            let n_recs = word(self, rt::HOST_CTX_N_RECORDS, self.cx.i64_type().into()).into_int_value();
-            tables.push(LightTable { base: recs, n: n_recs, records: true });
-        }
-        tables
+        let records = self.t.light_records && !self.t.dual;
+        let (base, n) = if records {
+            (rt::HOST_CTX_RECORDS, rt::HOST_CTX_N_RECORDS)
+        } else {
+            (rt::HOST_CTX_LIGHTS, rt::HOST_CTX_N_LIGHTS)
+        };
+        let base = word(self, base, self.i8p().into()).into_pointer_value();
+        let n = word(self, n, self.cx.i64_type().into()).into_int_value();
+        LightTable { base, n, records }
     }
 
     /// `ConeTest::new(axis, angle)`: the axis, `cos²(angle)·|axis|²`, whether the cone is no

@@ -82,6 +82,9 @@ pub struct Target {
     /// Also write the numeric output parameters to the output buffer, after the
     /// [`abi::OUTPUT_VALUES`] standard outputs ([`abi::output_params`]).
     pub output_params: bool,
+    /// The light loops read the context's light records, not its lights as data
+    /// ([`crate::JitOptions::light_records`]).
+    pub light_records: bool,
 }
 
 /// Storage of a variable.
