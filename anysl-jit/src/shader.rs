@@ -164,18 +164,9 @@ impl JitShader {
             .as_ref()
     }
 
-    /// The variant `v` for a run in `ctx`: compiled for light records
-    /// ([`JitOptions::light_records`]) when the context hands its lights over so, else the
-    /// plain variant (compiling it now if needed).
-    #[inline]
-    fn variant_in<F: ShadingFloat, C: ShadingContext<F>>(
-        &self,
-        v: Variant,
-        ctx: &C,
-    ) -> Result<&Arc<CompiledShader>, &String> {
-        if v.dual() || ctx.lights_as_data().is_some() || ctx.light_records().is_none() {
-            return self.variant_ref(v);
-        }
+    /// The variant `v` compiled for contexts with light records ([`JitOptions::light_records`];
+    /// compiling it now if needed).
+    fn record_variant(&self, v: Variant) -> Result<&Arc<CompiledShader>, &String> {
         self.record_variants[v.index()]
             .get_or_init(|| {
                 let opts = JitOptions { light_records: true, ..self.opts.clone() };
@@ -557,10 +548,14 @@ impl JitShader {
         unsafe { G::write_mask(cast::<F::Mask, G::Mask>(e.mask()), mbuf.as_mut_ptr()) };
         let host = HostTable::<F, C, G>::table();
         let mut hc = HostCtx::new(ctx);
+        // A context with light records runs the flavour compiled for them (where it does not
+        // compile, the plain one, whose loops call the context's; the variants with
+        // derivatives have one flavour).
+        let f = if hc.records.is_null() || cs.variant.dual() { cs.f } else { self.record_variant(cs.variant).map_or(cs.f, |r| r.f) };
         // SAFETY: the buffers have the layout the compiled code expects (the caller's
         // promise for `out`); `ctx` is a `C`, which is what the host table's shims take.
         unsafe {
-            (cs.f)(gbuf, out, mbuf.as_ptr(), (&mut hc as *mut HostCtx<F, C>).cast(), host, self.param_block.as_ptr());
+            f(gbuf, out, mbuf.as_ptr(), (&mut hc as *mut HostCtx<F, C>).cast(), host, self.param_block.as_ptr());
         }
     }
 }
@@ -627,7 +622,7 @@ impl SurfaceShader for JitShader {
 
     fn shade<F: ShadingFloat, C: ShadingContext<F>>(&self, ctx: &mut C, e: &mut Exec<F>) -> SurfaceOutput<F> {
         if let Some(v) = variant_of::<F>() {
-            if let Ok(cs) = self.variant_in(v, ctx) {
+            if let Ok(cs) = self.variant_ref(v) {
                 return_as_variant!(v, F, |G| self.run::<F, C, G>(cs, ctx, e));
                 unreachable!(
                     "variant_of::<{}>() named {v:?}, a type of other lanes or size",
@@ -644,7 +639,7 @@ impl DisplacementShader for JitShader {
     /// interpreter for other float types.
     fn displace<F: ShadingFloat, C: ShadingContext<F>>(&self, ctx: &mut C, e: &mut Exec<F>) -> (Vec3<F>, Vec3<F>) {
         if let Some(v) = variant_of::<F>() {
-            if let Ok(cs) = self.variant_in(v, ctx) {
+            if let Ok(cs) = self.variant_ref(v) {
                 return_as_variant!(v, F, |G| self.run_displace::<F, C, G>(cs, ctx, e));
                 unreachable!(
                     "variant_of::<{}>() named {v:?}, a type of other lanes or size",
