@@ -551,7 +551,11 @@ impl JitShader {
         // A context with light records runs the flavour compiled for them (where it does not
         // compile, the plain one, whose loops call the context's; the variants with
         // derivatives have one flavour).
-        let f = if hc.records.is_null() || cs.variant.dual() { cs.f } else { self.record_variant(cs.variant).map_or(cs.f, |r| r.f) };
+        let f = if hc.records.is_null() || cs.variant.dual() {
+            cs.f
+        } else {
+            self.record_variant(cs.variant).map_or(cs.f, |r| r.f)
+        };
         // SAFETY: the buffers have the layout the compiled code expects (the caller's
         // promise for `out`); `ctx` is a `C`, which is what the host table's shims take.
         unsafe {

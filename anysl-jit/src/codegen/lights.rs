@@ -149,9 +149,9 @@ impl<'c> Cg<'c, '_> {
         self.mor(inside, *all)
     }
 
-    /// `illuminance(position [, axis, angle]) { body }` over the `n` lights at `lights`, the
-    /// body compiled inline: [`anysl_core::run_illuminance`] with each light evaluated as
-    /// [`LightData::light`] does — ambient lights skipped, a point light's `L = position - pos`
+    /// `illuminance(position [, axis, angle]) { body }` over the lights of `table`, the
+    /// body compiled inline: [`anysl_core::run_illuminance`] with each light evaluated by its
+    /// code (a record with code: called for `position`) or as [`LightData::light`] does — ambient lights skipped, a point light's `L = position - pos`
     /// with its falloff, a distant light's `L = pos`, `L` reversed to point at the light, the
     /// lanes in the cone (`ConeTest`), nothing for no lane, no shadowing — so the body sees
     /// the `L` and `Cl` the renderer's loop would hand it. `break`/`continue` in the body
@@ -195,14 +195,8 @@ impl<'c> Cg<'c, '_> {
         let data_bb = self.cx.append_basic_block(func, "illum.data");
         // Records may have code (the records table; never for the variants with derivatives).
         let with_code = table.records;
-        let code_bb = if with_code {
-            let code_bb = self.cx.append_basic_block(func, "illum.code");
-            self.branch_on_code(&table, rec, code_bb, data_bb);
-            Some(code_bb)
-        } else {
-            self.b.build_unconditional_branch(data_bb).expect("br");
-            None
-        };
+        let code_bb = with_code.then(|| self.cx.append_basic_block(func, "illum.code"));
+        self.branch_on_code(rec, code_bb, data_bb);
         self.b.position_at_end(data_bb);
         let field = |cg: &Self, off: usize, t: inkwell::types::BasicTypeEnum<'c>| {
             let q = unsafe { cg.b.build_gep(rec, &[i64t.const_int(off as u64, false)], "") }.expect("gep");
@@ -384,8 +378,8 @@ impl<'c> Cg<'c, '_> {
         let rec = self.light_record(&table, iv);
         // A record with code: the light's entry called for `P` under the mask.
         let data_bb = self.cx.append_basic_block(func, "light.data");
-        let code_bb = self.cx.append_basic_block(func, "light.code");
-        self.branch_on_code(&table, rec, code_bb, data_bb);
+        let code_bb = table.records.then(|| self.cx.append_basic_block(func, "light.code"));
+        self.branch_on_code(rec, code_bb, data_bb);
 
         self.b.position_at_end(data_bb);
         let field_i32 = |cg: &Self, off: usize| -> IntValue<'c> {
@@ -470,7 +464,7 @@ impl<'c> Cg<'c, '_> {
         // A light with code: `ambient()` takes an ambient light's `Cl` for the live lanes
         // (`sum_ambient`), `illuminance` a directed light's `Cl` and `L`; a light that does
         // not emit so is not called.
-        let code_lit = if table.records {
+        let code_lit = if let Some(code_bb) = code_bb {
             self.b.position_at_end(code_bb);
             let emission = self.record_code_field(rec, offset_of!(LightCode, emission), self.cx.i32_type().into());
             let is_amb = self
@@ -508,8 +502,6 @@ impl<'c> Cg<'c, '_> {
             };
             code_lit
         } else {
-            self.b.position_at_end(code_bb);
-            self.b.build_unreachable().expect("unreachable");
             None
         };
 
@@ -596,19 +588,19 @@ impl<'c> Cg<'c, '_> {
         unsafe { self.b.build_gep(table.base, &[at], "") }.expect("gep")
     }
 
-    /// Branches to `code_bb` when record `rec` of `table` is a light with code, else to
-    /// `data_bb` (whose data is at the record's start: [`LightRecord::data`]).
+    /// Branches to `code_bb` when record `rec` is a light with code, else (and without a
+    /// `code_bb`: a table of data) to `data_bb` (a record's data is at its start:
+    /// [`LightRecord::data`]).
     pub(super) fn branch_on_code(
         &self,
-        table: &LightTable<'c>,
         rec: PointerValue<'c>,
-        code_bb: inkwell::basic_block::BasicBlock<'c>,
+        code_bb: Option<inkwell::basic_block::BasicBlock<'c>>,
         data_bb: inkwell::basic_block::BasicBlock<'c>,
     ) {
-        if !table.records {
+        let Some(code_bb) = code_bb else {
             self.b.build_unconditional_branch(data_bb).expect("br");
             return;
-        }
+        };
         let entry = self.record_code_field(rec, offset_of!(LightCode, entry), self.cx.i64_type().into());
         let none =
             self.b.build_int_compare(IntPredicate::EQ, entry.into_int_value(), self.cx.i64_type().const_zero(), "");
