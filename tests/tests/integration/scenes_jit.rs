@@ -29,6 +29,14 @@ fn jit_surfaces(dirs: Vec<PathBuf>) -> Surfaces<JitShader> {
     })
 }
 
+/// A temporary shader directory of this test run (`tag` names it) holding `file` with `source`.
+fn shader_dir(tag: &str, file: &str, source: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("anysl-tests-{tag}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    std::fs::write(dir.join(file), source).expect("write shader");
+    dir
+}
+
 /// Renders `frame` with `surfaces` in the packet (8 lanes) or scalar renderer.
 fn render<S>(frame: &FrameDesc, surfaces: &mut Surfaces<S>, packet: bool) -> Vec<[f32; 4]>
 where
@@ -61,13 +69,11 @@ fn psnr(a: &[[f32; 4]], b: &[[f32; 4]]) -> f64 {
 
 #[test]
 fn a_compiled_displacement_bends_the_normal_as_its_slope_says() {
-    let dir = std::env::temp_dir().join(format!("anysl-tests-jit-displacement-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    std::fs::write(
-        dir.join("ripple.sl"),
+    let dir = shader_dir(
+        "jit-displacement",
+        "ripple.sl",
         "displacement ripple(float amp = 0.1; float freq = 3;)\n{\n    P += amp * sin(freq * xcomp(P)) * normalize(N);\n}\n",
-    )
-    .expect("write shader");
+    );
     let (amp, freq) = (0.1f32, 3.0f32);
     // An orthographic view of the plane z = 5 (16×16 pixels over [-2, 2]²), lit head-on.
     let rib = format!(
@@ -208,13 +214,11 @@ fn compiled_surfaces_call_sl_lights_directly_without_shadows() {
 
 #[test]
 fn depth_is_zero_at_the_near_and_one_at_the_far_clipping_plane() {
-    let dir = std::env::temp_dir().join(format!("anysl-tests-depth-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    std::fs::write(
-        dir.join("showdepth.sl"),
+    let dir = shader_dir(
+        "depth",
+        "showdepth.sl",
         "surface showdepth() { Ci = color (depth(P), depth(P + vector (0, 0, 2.5)), depth(point \"camera\" (0, 0, 2))); Oi = 1; }\n",
-    )
-    .expect("write shader");
+    );
     // The camera looks down +z; the plane lies at camera z = 7, moved by a world transform
     // (so "current" is not camera space); clipping 2 … 12: depth (7 − 2) / 10 = 0.5.
     let rib = "Format 8 8 1 PixelSamples 1 1 PixelFilter \"box\" 1 1 Clipping 2 12\n\
