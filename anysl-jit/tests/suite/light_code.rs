@@ -24,26 +24,26 @@ fn repo() -> PathBuf {
 /// A light of a test scene: a compiled `.sl` light seeing `spaces`, or a light data describes.
 #[derive(Clone, Debug)]
 enum Lamp {
-    Sl(JitShader, Spaces),
+    Sl(Box<(JitShader, Spaces)>),
     Rust(Light),
 }
 
 impl Shader for Lamp {
     fn meta(&self) -> ShaderMeta {
         match self {
-            Self::Sl(j, _) => j.meta(),
+            Self::Sl(b) => b.0.meta(),
             Self::Rust(l) => l.meta(),
         }
     }
     fn param(&self, name: &str) -> Option<ParamValue> {
         match self {
-            Self::Sl(j, _) => j.param(name),
+            Self::Sl(b) => b.0.param(name),
             Self::Rust(l) => l.param(name),
         }
     }
     fn set_param(&mut self, name: &str, value: &ParamValue) -> Result<(), ParamError> {
         match self {
-            Self::Sl(j, _) => j.set_param(name, value),
+            Self::Sl(b) => b.0.set_param(name, value),
             Self::Rust(l) => l.set_param(name, value),
         }
     }
@@ -52,25 +52,25 @@ impl Shader for Lamp {
 impl LightShader for Lamp {
     fn light<F: ShadingFloat>(&self, e: &mut Exec<F>, ps: Vec3<F>) -> LightOutput<F> {
         match self {
-            Self::Sl(j, s) => j.light_in(e, ps, s),
+            Self::Sl(b) => b.0.light_in(e, ps, &b.1),
             Self::Rust(l) => l.light(e, ps),
         }
     }
     fn emission(&self) -> Option<Emission> {
         match self {
-            Self::Sl(j, _) => j.emission(),
+            Self::Sl(b) => b.0.emission(),
             Self::Rust(l) => l.emission(),
         }
     }
     fn data(&self) -> Option<LightData> {
         match self {
-            Self::Sl(..) => None,
+            Self::Sl(_) => None,
             Self::Rust(l) => l.data(),
         }
     }
     fn code<F: ShadingFloat>(&self) -> Option<LightCode> {
         match self {
-            Self::Sl(j, s) => j.code_in::<F>(s),
+            Self::Sl(b) => b.0.code_in::<F>(&b.1),
             Self::Rust(_) => None,
         }
     }
@@ -142,7 +142,7 @@ fn sl(name: &str, params: &[(&str, ParamValue)], spaces: Spaces) -> Lamp {
     for (p, v) in params {
         j.set_param(p, v).unwrap();
     }
-    Lamp::Sl(j, spaces)
+    Lamp::Sl(Box::new((j, spaces)))
 }
 
 fn light_sets() -> Vec<(&'static str, Vec<Lamp>)> {
@@ -199,7 +199,8 @@ fn compiled_light_loops_call_sl_lights_bit_for_bit() {
     let sets = light_sets();
     for (_, lights) in &sets {
         for l in lights {
-            if let Lamp::Sl(j, _) = l {
+            if let Lamp::Sl(b) = l {
+                let j = &b.0;
                 for v in [Variant::F32, Variant::X4, Variant::X8, Variant::X16] {
                     assert!(j.variant(v).unwrap().light.is_some(), "{j:?}: no direct entry for {v:?}");
                 }
@@ -251,7 +252,7 @@ fn a_light_that_needs_the_host_has_no_direct_entry() {
     let j = JitShader::from_source("t.sl", src, &[], JitOptions::default()).unwrap();
     assert!(j.variant(Variant::X8).unwrap().light.is_none());
     assert!(j.code::<F32x8>().is_none());
-    let lights = [Lamp::Sl(j, Spaces::standard().clone())];
+    let lights = [Lamp::Sl(Box::new((j, Spaces::standard().clone())))];
     let set = PointSet::random(16, 9);
     let ctx = PointContext::<F32x8, Lamp>::new(set.globals::<F32x8>(0), &lights);
     assert!(ctx.light_records().is_none());
