@@ -35,6 +35,19 @@ pub type IllumFn = unsafe extern "C" fn(
 /// specialization. `globals` points at the
 /// renderer's `Globals<F>` (read at the offsets of [`GlobalsLayout`]); see [`OUTPUT_ORDER`]
 /// for the output buffer.
+/// A light shader's direct entry ([`crate::CompiledShader::light`], [`anysl_core::LightCode`]):
+/// the surface points (three values of the float type, `STRIDE` floats apart), the output
+/// buffer (`Cl`, `L`), the mask, the callbacks' context (the light's `Spaces`), the callback
+/// table ([`crate::rt::light_host_table`]) and the parameter block.
+pub type LightFn = unsafe extern "C" fn(
+    ps: *const f32,
+    out: *mut f32,
+    mask: *const u32,
+    ctx: *mut c_void,
+    host: *const usize,
+    params: *const f32,
+);
+
 pub type ShadeFn = unsafe extern "C" fn(
     globals: *const f32,
     out: *mut f32,

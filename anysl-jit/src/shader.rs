@@ -511,11 +511,41 @@ impl JitShader {
         spaces: &Spaces,
     ) -> LightOutput<F> {
         assert!(crate::abi::output_layout_is_buffer::<G>(), "SurfaceOutput layout differs from the JIT's");
-        let mut ctx = LightCtx::at(ps, spaces);
         let mut out = std::mem::MaybeUninit::<SurfaceOutput<G>>::uninit();
-        // SAFETY: a light shader's code writes `Cl` and `L`: six values of `G`, `STRIDE` floats
-        // apart, the size and alignment of `SurfaceOutput<G>`.
-        unsafe { self.invoke::<F, LightCtx<'_, F>, G>(cs, &mut ctx, e, out.as_mut_ptr().cast()) };
+        if let Some(entry) = cs.light {
+            // The direct entry (what compiled light loops call): the points and the mask in
+            // buffers, the light's spaces as its callbacks' context; no globals, no host context.
+            let mut psb = [0f32; 3 * crate::abi::MAX_LANES];
+            let mut mbuf = [0u32; crate::abi::MAX_LANES];
+            // SAFETY: `psb` holds three values of `G` (`STRIDE` = lanes floats each, at most
+            // `MAX_LANES`), `mbuf` a mask of `G`; F and G are the same type.
+            unsafe {
+                for (k, c) in [ps.x, ps.y, ps.z].into_iter().enumerate() {
+                    cast::<F, G>(c).write(psb.as_mut_ptr().add(k * G::STRIDE));
+                }
+                G::write_mask(cast::<F::Mask, G::Mask>(e.mask()), mbuf.as_mut_ptr());
+            }
+            // SAFETY: the entry was generated with the `LightFn` signature (`CompiledShader::light`).
+            let f = unsafe { std::mem::transmute::<usize, crate::abi::LightFn>(entry) };
+            // SAFETY: the buffers have the layout the code expects; a light shader's code
+            // writes `Cl` and `L`, six values of `G` (`SurfaceOutput<G>`'s size and alignment);
+            // its only callback reads `spaces` as the context.
+            unsafe {
+                f(
+                    psb.as_ptr(),
+                    out.as_mut_ptr().cast(),
+                    mbuf.as_ptr(),
+                    (spaces as *const Spaces).cast_mut().cast(),
+                    crate::rt::light_host_table(),
+                    self.param_block.as_ptr(),
+                );
+            }
+        } else {
+            let mut ctx = LightCtx::at(ps, spaces);
+            // SAFETY: a light shader's code writes `Cl` and `L`: six values of `G`, `STRIDE`
+            // floats apart, the size and alignment of `SurfaceOutput<G>`.
+            unsafe { self.invoke::<F, LightCtx<'_, F>, G>(cs, &mut ctx, e, out.as_mut_ptr().cast()) };
+        }
         let o = out.as_ptr().cast::<f32>();
         // SAFETY: the compiled code wrote all six values; F and G are the same type.
         let rd = |k: usize| cast::<G, F>(unsafe { G::read(o.add(k * G::STRIDE)) });
