@@ -279,18 +279,7 @@ impl<'c> Cg<'c, '_> {
             let code_end = self.b.get_insert_block().expect("positioned");
             self.b.build_unconditional_branch(sum_bb).expect("br");
             self.b.position_at_end(sum_bb);
-            let vt = self.vt();
-            let join = |cg: &Self, a: &[S<'c>], b: &[S<'c>]| -> Vec<S<'c>> {
-                a.iter()
-                    .zip(b)
-                    .map(|(x, y)| {
-                        let phi = cg.b.build_phi(vt, "").expect("phi");
-                        phi.add_incoming(&[(&x.v, data_end), (&y.v, code_end)]);
-                        S { r: Repr::V, v: phi.as_basic_value(), d: None }
-                    })
-                    .collect()
-            };
-            (join(self, &lv, &cl_l), join(self, &clv, &ccl))
+            (self.join_varying(&lv, data_end, &cl_l, code_end), self.join_varying(&clv, data_end, &ccl, code_end))
         } else {
             (l, cl)
         };
@@ -508,17 +497,7 @@ impl<'c> Cg<'c, '_> {
         self.b.position_at_end(sum_bb);
         let lit = match (data_lit, code_lit) {
             (Some((dl, dcl, dend)), Some((cl_l, ccl, cend))) => {
-                let join = |cg: &Self, a: &[S<'c>], b: &[S<'c>]| -> Vec<S<'c>> {
-                    a.iter()
-                        .zip(b)
-                        .map(|(x, y)| {
-                            let phi = cg.b.build_phi(vt, "").expect("phi");
-                            phi.add_incoming(&[(&x.v, dend), (&y.v, cend)]);
-                            S { r: Repr::V, v: phi.as_basic_value(), d: None }
-                        })
-                        .collect()
-                };
-                Some((join(self, &dl, &cl_l), join(self, &dcl, &ccl)))
+                Some((self.join_varying(&dl, dend, &cl_l, cend), self.join_varying(&dcl, dend, &ccl, cend)))
             }
             (Some((l, cl, _)), None) => Some((l, cl)),
             _ => None,
@@ -577,6 +556,25 @@ impl<'c> Cg<'c, '_> {
             out.extend(read(self, slots));
         }
         out
+    }
+
+    /// Phis of the varying values `a` (from block `a_bb`) and `b` (from `b_bb`), pairwise, at
+    /// the start of the block the builder is positioned in.
+    fn join_varying(
+        &self,
+        a: &[S<'c>],
+        a_bb: inkwell::basic_block::BasicBlock<'c>,
+        b: &[S<'c>],
+        b_bb: inkwell::basic_block::BasicBlock<'c>,
+    ) -> Vec<S<'c>> {
+        a.iter()
+            .zip(b)
+            .map(|(x, y)| {
+                let phi = self.b.build_phi(self.vt(), "").expect("phi");
+                phi.add_incoming(&[(&x.v, a_bb), (&y.v, b_bb)]);
+                S { r: Repr::V, v: phi.as_basic_value(), d: None }
+            })
+            .collect()
     }
 
     /// Record `i` of `table`.

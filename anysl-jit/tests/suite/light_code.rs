@@ -5,7 +5,7 @@
 //! loop test shaders, at every float type the JIT compiles, with `.sl` lights alone, mixed with
 //! lights described as data, and in a space of their own.
 
-use super::light_loops::shaders;
+use super::light_loops::{shade, shaders};
 use anysl_core::points::{PointSet, ShadeOut};
 use anysl_core::prelude::*;
 use anysl_core::shader::{ParamError, ParamValue, ShaderMeta};
@@ -14,7 +14,6 @@ use anysl_jit::{JitOptions, JitShader, Variant};
 use anysl_shaders::lights::{AmbientLight, PointLight};
 use anysl_shaders::Light;
 use anysl_simd::{F32x16, F32x4, F32x8};
-use std::cell::Cell;
 use std::path::PathBuf;
 
 fn repo() -> PathBuf {
@@ -76,65 +75,6 @@ impl LightShader for Lamp {
     }
 }
 
-/// A [`PointContext`] that may hide its light records (so the compiled code calls its loops)
-/// and counts the calls of its loops.
-struct Probe<'a, F: ShadingFloat> {
-    inner: PointContext<'a, F, Lamp>,
-    hide: bool,
-    loops: &'a Cell<usize>,
-}
-
-impl<F: ShadingFloat> ShadingContext<F> for Probe<'_, F> {
-    fn globals(&self) -> &Globals<F> {
-        self.inner.globals()
-    }
-    fn illuminance<B: FnMut(&mut Exec<F>, Vec3<F>, Color<F>)>(
-        &mut self,
-        e: &mut Exec<F>,
-        q: LightQuery<'_, F>,
-        body: B,
-    ) {
-        self.loops.set(self.loops.get() + 1);
-        self.inner.illuminance(e, q, body);
-    }
-    fn ambient(&mut self, e: &Exec<F>) -> Color<F> {
-        self.loops.set(self.loops.get() + 1);
-        self.inner.ambient(e)
-    }
-    fn trace(&mut self, e: &Exec<F>, p: Vec3<F>, dir: Vec3<F>) -> Color<F> {
-        self.inner.trace(e, p, dir)
-    }
-    fn light_records(&self) -> Option<&[LightRecord]> {
-        if self.hide {
-            None
-        } else {
-            self.inner.light_records()
-        }
-    }
-}
-
-/// `Ci` and `Oi` of `jit` on `set` as `f32` bits (one NaN for all NaNs), the records hidden or
-/// not, and how often the compiled code called the context's light loops.
-fn shade<F: ShadingFloat>(jit: &JitShader, set: &PointSet, lights: &[Lamp], hide: bool) -> (Vec<u32>, usize) {
-    let loops = Cell::new(0);
-    let mut out = Vec::new();
-    for i in (0..set.len()).step_by(F::LANES) {
-        let mut ctx = Probe { inner: PointContext::new(set.globals::<F>(i), lights), hide, loops: &loops };
-        let o = jit.shade(&mut ctx, &mut Exec::new());
-        for c in [o.Ci.r, o.Ci.g, o.Ci.b, o.Oi.r, o.Oi.g, o.Oi.b] {
-            out.extend((0..F::LANES).map(|l| {
-                let x = c.lane(l) as f32;
-                if x.is_nan() {
-                    f32::NAN.to_bits()
-                } else {
-                    x.to_bits()
-                }
-            }));
-        }
-    }
-    (out, loops.get())
-}
-
 fn sl(name: &str, params: &[(&str, ParamValue)], spaces: Spaces) -> Lamp {
     let path =
         if name == "gobo" { repo().join("scenes/gobo.sl") } else { repo().join(format!("shaders/rsl/{name}.sl")) };
@@ -182,8 +122,8 @@ fn light_sets() -> Vec<(&'static str, Vec<Lamp>)> {
 }
 
 fn check<F: ShadingFloat>(name: &str, jit: &JitShader, set: &PointSet, lights_name: &str, lights: &[Lamp]) {
-    let (direct, calls) = shade::<F>(jit, set, lights, false);
-    let (host, _) = shade::<F>(jit, set, lights, true);
+    let (direct, calls) = shade::<F, _>(jit, set, lights, false);
+    let (host, _) = shade::<F, _>(jit, set, lights, true);
     let differ = direct.iter().zip(&host).filter(|(a, b)| a != b).count();
     assert_eq!(differ, 0, "{name} {} with {lights_name}: {differ} outputs differ from the context's loops", F::NAME);
     if name != "glass" && name != "bodies" {
@@ -233,7 +173,7 @@ fn points_entry_calls_sl_lights() {
     for (lights_name, lights) in light_sets() {
         let mut out = ShadeOut::<f32>::new(set.len());
         assert!(jit.shade_point_set::<F32x8, Lamp>(&lights, &set, &mut out).unwrap());
-        let (host, calls) = shade::<F32x8>(&jit, &set, &lights, true);
+        let (host, calls) = shade::<F32x8, _>(&jit, &set, &lights, true);
         assert!(calls > 0);
         for (k, ch) in out.channels.iter().enumerate().take(3) {
             for (i, x) in ch.iter().enumerate() {

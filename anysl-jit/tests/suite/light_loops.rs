@@ -5,7 +5,7 @@
 
 use anysl_core::points::PointSet;
 use anysl_core::prelude::*;
-use anysl_core::PointContext;
+use anysl_core::{LightRecord, LightSource, PointContext};
 use anysl_jit::{JitOptions, JitShader};
 use anysl_shaders::lights::{AmbientLight, DistantLight, PointLight, SpotLight};
 use anysl_shaders::{table1_lights, Light};
@@ -17,15 +17,15 @@ fn rsl_dir() -> PathBuf {
     PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../shaders/rsl"))
 }
 
-/// A [`PointContext`] that may hide its lights' data (so the compiled code calls its loops)
-/// and counts the calls of its loops.
-struct Probe<'a, F: ShadingFloat> {
-    inner: PointContext<'a, F, Light>,
+/// A [`PointContext`] that may hide its lights' data and records (so the compiled code calls
+/// its loops) and counts the calls of its loops.
+pub(crate) struct Probe<'a, F: ShadingFloat, L> {
+    inner: PointContext<'a, F, L>,
     hide: bool,
     loops: &'a Cell<usize>,
 }
 
-impl<F: ShadingFloat> ShadingContext<F> for Probe<'_, F> {
+impl<F: ShadingFloat, L: LightSource> ShadingContext<F> for Probe<'_, F, L> {
     fn globals(&self) -> &Globals<F> {
         self.inner.globals()
     }
@@ -52,11 +52,23 @@ impl<F: ShadingFloat> ShadingContext<F> for Probe<'_, F> {
             self.inner.lights_as_data()
         }
     }
+    fn light_records(&self) -> Option<&[LightRecord]> {
+        if self.hide {
+            None
+        } else {
+            self.inner.light_records()
+        }
+    }
 }
 
 /// The outputs of `jit` on `set` as `f32` bits, the context's lights hidden or not, and how
 /// often the compiled code called the context's light loops.
-fn shade<F: ShadingFloat>(jit: &JitShader, set: &PointSet, lights: &[Light], hide: bool) -> (Vec<u32>, usize) {
+pub(crate) fn shade<F: ShadingFloat, L: LightSource>(
+    jit: &JitShader,
+    set: &PointSet,
+    lights: &[L],
+    hide: bool,
+) -> (Vec<u32>, usize) {
     let loops = Cell::new(0);
     let mut out = Vec::new();
     for i in (0..set.len()).step_by(F::LANES) {
@@ -176,8 +188,8 @@ surface bodies(float cutoff = 0.4;)
 }
 
 fn check<F: ShadingFloat>(name: &str, jit: &JitShader, set: &PointSet, lights_name: &str, lights: &[Light]) {
-    let (inline, calls) = shade::<F>(jit, set, lights, false);
-    let (host, _) = shade::<F>(jit, set, lights, true);
+    let (inline, calls) = shade::<F, _>(jit, set, lights, false);
+    let (host, _) = shade::<F, _>(jit, set, lights, true);
     let differ = inline.iter().zip(&host).filter(|(a, b)| a != b).count();
     assert_eq!(differ, 0, "{name} {} with {lights_name}: {differ} outputs differ from the context's loops", F::NAME);
     let described = PointContext::<F, Light>::new(set.globals::<F>(0), lights).lights_as_data().is_some();
