@@ -99,6 +99,10 @@ pub struct LightCode {
     pub params: *const f32,
     /// How the light always emits (`Local` when it may vary).
     pub emission: Emission,
+    /// For the code's producer only: what it needs to compile the light into a caller's
+    /// code instead of calling `entry` (anysl-jit: the compiled variant the entry belongs
+    /// to, recognized by `host`), or null. Others pass it on untouched.
+    pub source: *const (),
 }
 
 // SAFETY: the pointers are to machine code and to data the light owns and does not change
@@ -135,6 +139,7 @@ impl LightRecord {
             host: core::ptr::null(),
             params: core::ptr::null(),
             emission: Emission::Local,
+            source: core::ptr::null(),
         };
         Some(Self { data, code })
     }

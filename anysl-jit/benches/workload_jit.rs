@@ -4,7 +4,7 @@
 //! median and best of `ROUNDS` calls (default 31), and each row's max abs error.
 //!
 //! `cargo bench -p anysl-jit --bench workload_jit`; `SHADERS=plastic,wood` selects,
-//! `ROWS=aot-x8,jit-x8` selects rows, `OPT=3` compiles at LLVM's `default<O3>` (`POINTS_OPT=2` the points entries at level 2; 3 by default), `INLINE_NOISE=1` emits the noise as IR (`JitOptions::inline_noise`); `DUMP_IR=DIR` writes each variant's optimized LLVM IR
+//! `ROWS=aot-x8,jit-x8` selects rows, `OPT=3` compiles at LLVM's `default<O3>` (`POINTS_OPT=2` the points entries at level 2; 3 by default), `INLINE_NOISE=1` emits the noise as IR (`JitOptions::inline_noise`); `SPECIALIZE=0` reads the parameters at run time (`JitOptions::specialize`), as the ahead-of-time shaders do; `DUMP_IR=DIR` writes each variant's optimized LLVM IR
 //! to `DIR/<shader>-<variant>.ll`.
 //!
 //! `COUNT_OPS=1` also compiles each shader with `JitOptions::count_ops` and shades the same
@@ -35,7 +35,9 @@ fn main() {
         let inline_noise = env("INLINE_NOISE").is_some_and(|s| s == "1");
         let points_opt: u32 =
             env("POINTS_OPT").and_then(|s| s.parse().ok()).unwrap_or(JitOptions::new().points_opt_level);
-        let opts = JitOptions { opt_level: opt, inline_noise, points_opt_level: points_opt, ..JitOptions::new() };
+        let specialize = env("SPECIALIZE").is_none_or(|s| s != "0");
+        let opts =
+            JitOptions { opt_level: opt, inline_noise, points_opt_level: points_opt, specialize, ..JitOptions::new() };
         let jit = JitShader::from_source(sh.sl_file_name(), sh.sl_source(), &[], opts).expect("compiles");
         const VARIANTS: [Variant; 4] = [Variant::X8, Variant::X16, Variant::X8x4, Variant::X16x2];
         for v in VARIANTS {

@@ -44,7 +44,7 @@ use inkwell::passes::PassBuilderOptions;
 use inkwell::targets::{CodeModel, InitializationConfig, RelocMode, Target as LlvmTarget, TargetMachine};
 use inkwell::OptimizationLevel;
 use std::fmt;
-use std::sync::Once;
+use std::sync::{Arc, Once};
 use std::time::Instant;
 
 /// The float types the JIT compiles for.
@@ -277,6 +277,8 @@ pub struct CompileStats {
     pub insts: Vec<(String, usize)>,
     /// Threaded target-library functions created.
     pub threaded_fns: usize,
+    /// Light shaders compiled into the light loops over light records ([`InlineLight`]).
+    pub inline_lights: usize,
 }
 
 impl CompileStats {
@@ -295,6 +297,9 @@ struct Owned {
     /// The counters instrumented code increments ([`JitOptions::count_ops`]); their address
     /// is compiled into the code.
     counters: Option<Box<opcount::OpCounters>>,
+    /// The light shaders compiled into this code ([`InlineLight`]): kept alive so that their
+    /// entries, which the code compares record entries with, name no other code meanwhile.
+    inlined: Vec<InlineLight>,
 }
 
 impl Drop for Owned {
@@ -307,6 +312,15 @@ impl Drop for Owned {
 }
 
 impl Owned {
+    /// Whether code with light shaders compiled in runs `records`: every record with code is
+    /// one of them (else the light loops, which call no entry, would miss a light).
+    fn runs_records(&self, records: &[anysl_core::LightRecord]) -> bool {
+        !self.inlined.is_empty()
+            && records
+                .iter()
+                .all(|r| r.code.entry.is_null() || self.inlined.iter().any(|l| l.entry == r.code.entry as usize))
+    }
+
     fn op_counts(&self) -> Option<OpCounts> {
         self.counters.as_ref().map(|c| c.get())
     }
@@ -336,10 +350,43 @@ pub struct CompiledShader {
     pub stats: CompileStats,
     /// The optimized LLVM IR, when requested.
     pub llvm_ir: Option<String>,
+    /// A light shader with a direct entry: what compiling it into a surface's light loops
+    /// takes ([`InlineLight`]).
+    pub(crate) source: Option<LightIr>,
     _owned: Owned,
 }
 
+/// A light shader's lowered IR and instance, kept with its compiled variant so that a surface
+/// compiled later can compile the light into its own light loops ([`InlineLight`]).
+#[derive(Clone)]
+pub(crate) struct LightIr {
+    pub(crate) module: Arc<Module>,
+    pub(crate) values: Vec<Const>,
+    pub(crate) opts: JitOptions,
+}
+
+/// A light shader compiled into a surface's light loops: the compiled light loops select the
+/// light whose `entry` a record's entry is and run its code inline (no call, so the surface's
+/// live values stay in registers); such code runs only contexts whose records with code are all
+/// compiled in ([`CompiledShader::runs_records`]). The light's variant is the surface's; it
+/// stays alive as long as the surface's code.
+#[derive(Clone)]
+pub(crate) struct InlineLight {
+    pub(crate) entry: usize,
+    pub(crate) light: Arc<CompiledShader>,
+}
+
+/// At most this many distinct light shaders are compiled into one surface's light loops (each
+/// adds its code to the surface's compile); a scene's further lights are called.
+pub const MAX_INLINE_LIGHTS: usize = 8;
+
 impl CompiledShader {
+    /// Whether this code, compiled with light shaders in its light loops, runs a context with
+    /// `records` ([`InlineLight`]).
+    pub(crate) fn runs_records(&self, records: &[anysl_core::LightRecord]) -> bool {
+        self._owned.runs_records(records)
+    }
+
     /// The operations counted since compilation or the last reset; `None` unless compiled
     /// with [`JitOptions::count_ops`].
     #[must_use]
@@ -443,10 +490,23 @@ pub fn compile_with(
     opts: &JitOptions,
     keep_ir: bool,
 ) -> Result<CompiledShader, JitError> {
-    let (addr, light, stats, llvm_ir, owned) = build(module, values, variant, opts, keep_ir, None)?;
+    compile_inlining(module, values, variant, opts, keep_ir, &[])
+}
+
+/// [`compile_with`] with the light shaders `inline` compiled into the light loops over light
+/// records ([`JitOptions::light_records`]).
+pub(crate) fn compile_inlining(
+    module: &Module,
+    values: &[Const],
+    variant: Variant,
+    opts: &JitOptions,
+    keep_ir: bool,
+    inline: &[InlineLight],
+) -> Result<CompiledShader, JitError> {
+    let (addr, light, stats, llvm_ir, owned) = build(module, values, variant, opts, keep_ir, None, inline)?;
     // SAFETY: the function was generated with the `ShadeFn` signature.
     let f: ShadeFn = unsafe { std::mem::transmute::<usize, ShadeFn>(addr) };
-    Ok(CompiledShader { f, light, variant, stats, llvm_ir, _owned: owned })
+    Ok(CompiledShader { f, light, variant, stats, llvm_ir, source: None, _owned: owned })
 }
 
 /// What a points entry ([`abi::PointsFn`]) reads and writes: the global components read
@@ -479,6 +539,16 @@ pub struct CompiledPoints {
 }
 
 impl CompiledPoints {
+    /// [`CompiledShader::runs_records`].
+    pub(crate) fn runs_records(&self, records: &[anysl_core::LightRecord]) -> bool {
+        self._owned.runs_records(records)
+    }
+
+    /// Whether light shaders are compiled into this code ([`InlineLight`]).
+    pub(crate) fn inlines_lights(&self) -> bool {
+        !self._owned.inlined.is_empty()
+    }
+
     /// The operations counted since compilation or the last reset; `None` unless compiled
     /// with [`JitOptions::count_ops`].
     #[must_use]
@@ -515,6 +585,20 @@ pub fn compile_points(
     layout: PointsLayout,
     keep_ir: bool,
 ) -> Result<CompiledPoints, JitError> {
+    compile_points_inlining(module, values, variant, opts, layout, keep_ir, &[])
+}
+
+/// [`compile_points`] with the light shaders `inline` compiled into the light loops over light
+/// records.
+pub(crate) fn compile_points_inlining(
+    module: &Module,
+    values: &[Const],
+    variant: Variant,
+    opts: &JitOptions,
+    layout: PointsLayout,
+    keep_ir: bool,
+    inline: &[InlineLight],
+) -> Result<CompiledPoints, JitError> {
     if layout.varying >> abi::GLOBAL_VALUES != 0 || !(1..=6).contains(&layout.outputs) {
         return Err(JitError(format!(
             "points layout {layout:?}: components 0..{} and 1..=6 outputs",
@@ -525,7 +609,7 @@ pub fn compile_points(
         return Err(JitError(format!("the points entry shades surface shaders, not {:?}", module.kind)));
     }
     let opts = JitOptions { opt_level: opts.points_opt_level, light_records: layout.light_records, ..opts.clone() };
-    let (addr, _, stats, llvm_ir, owned) = build(module, values, variant, &opts, keep_ir, Some(layout))?;
+    let (addr, _, stats, llvm_ir, owned) = build(module, values, variant, &opts, keep_ir, Some(layout), inline)?;
     // SAFETY: the function was generated with the `PointsFn` signature.
     let f: PointsFn = unsafe { std::mem::transmute::<usize, PointsFn>(addr) };
     Ok(CompiledPoints { f, variant, layout, stats, llvm_ir, _owned: owned })
@@ -540,6 +624,7 @@ fn build(
     opts: &JitOptions,
     keep_ir: bool,
     points: Option<PointsLayout>,
+    inline: &[InlineLight],
 ) -> Result<(usize, Option<usize>, CompileStats, Option<String>, Owned), JitError> {
     init_llvm();
     let mut stats = CompileStats::default();
@@ -580,6 +665,20 @@ fn build(
         cg.fn_attrs.push(("prefer-vector-width".into(), bits.clone()));
         cg.fn_attrs.push(("min-legal-vector-width".into(), bits));
     }
+    // The light shaders that may be compiled into the light loops: declared here (the light
+    // loops call them by name), each compiled in a module of its own (in this context) and
+    // linked in once the surface's code is generated and calls it.
+    let mut candidates = Vec::new();
+    if opts.light_records && !variant.dual() {
+        for l in inline.iter().filter(|l| l.light.variant == variant && l.light.source.is_some()) {
+            let f = cg.m.add_function(&codegen::inline_light_name(candidates.len()), cg.light_entry_type(), None);
+            cg.inline_lights.push((l.entry as u64, f));
+            candidates.push(l);
+            if candidates.len() == MAX_INLINE_LIGHTS {
+                break;
+            }
+        }
+    }
     let shade = cg.generate(&analyzed, values).map_err(|e| JitError(e.0))?;
     let entry = match points {
         Some(p) => {
@@ -595,6 +694,32 @@ fn build(
         .then(|| cg.generate_light_entry(shade));
     stats.threaded_fns = cg.threaded_fns;
     let llmod = std::mem::replace(&mut cg.m, cref.create_module("empty"));
+    let mut pinned = Vec::new();
+    for (k, (l, &(_, f))) in candidates.iter().zip(&cg.inline_lights).enumerate() {
+        if !cg.inline_lights_called.get() {
+            // No light loop over records: the code runs any records alike.
+            // SAFETY: a declaration nothing refers to.
+            unsafe { f.delete() };
+            pinned.push((*l).clone());
+            continue;
+        }
+        match inline_light_module(cref, variant, l.light.source.as_ref().expect("filtered"), &cg, k) {
+            Ok(lm) => {
+                llmod
+                    .link_in_module(lm)
+                    .map_err(|e| JitError(format!("linking a light shader in: {}", e.to_string())))?;
+                stats.inline_lights += 1;
+            }
+            // A light that does not compile so again is called at its entry.
+            Err(_) => cg.define_as_call(f, l.entry as u64),
+        }
+        // Linking replaced the declaration `f` with the light's definition.
+        let name = codegen::inline_light_name(k);
+        let f = llmod.get_function(&name).ok_or_else(|| JitError(format!("{name} not linked in")))?;
+        f.set_linkage(inkwell::module::Linkage::Internal);
+        codegen::always_inline(cref, f);
+        pinned.push((*l).clone());
+    }
     drop(cg);
     if let Err(e) = llmod.verify() {
         return Err(JitError(format!("invalid LLVM IR: {}", e.to_string())));
@@ -642,5 +767,47 @@ fn build(
         None => None,
     };
     stats.times_ms.push(("codegen", t3.elapsed().as_secs_f64() * 1e3));
-    Ok((addr, light, stats, llvm_ir, Owned { ee: Some(ee), module: Some(llmod), ctx: Some(ctx), counters }))
+    Ok((
+        addr,
+        light,
+        stats,
+        llvm_ir,
+        Owned { ee: Some(ee), module: Some(llmod), ctx: Some(ctx), counters, inlined: pinned },
+    ))
+}
+
+/// The LLVM module of light `src` compiled for `variant` as the `k`-th light compiled into the
+/// surface that `surface` generates: its direct entry named [`codegen::inline_light_name`]
+/// (external until linked in), its other functions internal.
+fn inline_light_module(
+    cx: &'static Context,
+    variant: Variant,
+    src: &LightIr,
+    surface: &Cg<'static, '_>,
+    k: usize,
+) -> Result<inkwell::module::Module<'static>, JitError> {
+    let analyzed = ir_passes(&src.module, &src.values, src.opts.specialize);
+    let m = analyzed.module();
+    let target = Target {
+        lanes: variant.lanes(),
+        native: variant.native_lanes(),
+        dual: false,
+        threaded: src.opts.threaded,
+        inline_noise: src.opts.inline_noise,
+        runtime_params: !src.opts.specialize,
+        output_params: false,
+        light_records: false,
+    };
+    let mut cg = Cg::new(cx, &m.func, target, variant.rt_resolver(), Variant::F32.rt_resolver());
+    cg.layout = surface.layout;
+    cg.fn_attrs = surface.fn_attrs.clone();
+    let shade = cg.generate(&analyzed, &src.values).map_err(|e| JitError(e.0))?;
+    if cg.host_used.get() & !(1 << rt::Host::Space as u64) != 0 {
+        return Err(JitError("the light calls the host".into()));
+    }
+    let entry = cg.generate_light_entry(shade);
+    shade.as_global_value().set_name(&format!("{}.shade", codegen::inline_light_name(k)));
+    shade.set_linkage(inkwell::module::Linkage::Internal);
+    entry.as_global_value().set_name(&codegen::inline_light_name(k));
+    Ok(std::mem::replace(&mut cg.m, cx.create_module("empty")))
 }

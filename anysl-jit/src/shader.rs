@@ -5,13 +5,14 @@ use crate::abi::JitFloat;
 use crate::abi::{GLOBAL_ORDER, GLOBAL_VALUES};
 use crate::rt::{cast, HostCtx, HostTable};
 use crate::{
-    compile, compile_points, CompiledPoints, CompiledShader, JitError, JitOptions, OpCounts, PointsLayout, Variant,
+    compile, compile_inlining, compile_points_inlining, CompiledPoints, CompiledShader, InlineLight, JitError,
+    JitOptions, LightIr, OpCounts, PointsLayout, Variant,
 };
 use anysl_ad::Dual;
 use anysl_core::points::{PointSet, ShadeOut};
 use anysl_core::prelude::*;
 use anysl_core::shader::{ParamError, ParamValue, ShaderMeta};
-use anysl_core::{Emission, LightCode, LightOutput, LightShader, LightSource, PointContext, Spaces};
+use anysl_core::{Emission, LightCode, LightOutput, LightRecord, LightShader, LightSource, PointContext, Spaces};
 use anysl_rsl::back::interp::{InterpShader, LightCtx, Program};
 use anysl_rsl::ir::{Const, Global, Module};
 use anysl_rsl::CompileOptions;
@@ -68,6 +69,9 @@ pub struct JitShader {
     variants: [Slot; Variant::ALL.len()],
     /// The variants compiled for contexts with light records ([`JitOptions::light_records`]).
     record_variants: [Slot; Variant::ALL.len()],
+    /// The same with the light shaders of the first such context compiled in
+    /// ([`JitShader::inline_variant`]).
+    inline_variants: [Slot; Variant::ALL.len()],
     /// Variants that also write the output parameters ([`JitShader::eval_point`]).
     eval_variants: [Slot; Variant::ALL.len()],
     points: PointsCache,
@@ -85,6 +89,7 @@ impl Clone for JitShader {
             opts: self.opts.clone(),
             variants: Default::default(),
             record_variants: Default::default(),
+            inline_variants: Default::default(),
             eval_variants: Default::default(),
             points: PointsCache::default(),
             interp: self.interp.clone(),
@@ -116,6 +121,7 @@ impl JitShader {
             opts,
             variants: Default::default(),
             record_variants: Default::default(),
+            inline_variants: Default::default(),
             eval_variants: Default::default(),
             points: PointsCache::default(),
             interp: InterpShader::new(Arc::new(program)),
@@ -160,12 +166,21 @@ impl JitShader {
     #[inline]
     fn variant_ref(&self, v: Variant) -> Result<&Arc<CompiledShader>, &String> {
         self.variants[v.index()]
-            .get_or_init(|| compile(&self.module, &self.values, v, &self.opts).map(Arc::new).map_err(|e| e.to_string()))
+            .get_or_init(|| {
+                let mut cs = compile(&self.module, &self.values, v, &self.opts).map_err(|e| e.to_string())?;
+                if cs.light.is_some() {
+                    // A light with a direct entry: surfaces may compile it into their loops.
+                    let ir =
+                        LightIr { module: self.module.clone(), values: self.values.clone(), opts: self.opts.clone() };
+                    cs.source = Some(ir);
+                }
+                Ok(Arc::new(cs))
+            })
             .as_ref()
     }
 
     /// The variant `v` compiled for contexts with light records ([`JitOptions::light_records`];
-    /// compiling it now if needed).
+    /// compiling it now if needed). Its light loops call the lights' entries.
     fn record_variant(&self, v: Variant) -> Result<&Arc<CompiledShader>, &String> {
         self.record_variants[v.index()]
             .get_or_init(|| {
@@ -173,6 +188,31 @@ impl JitShader {
                 compile(&self.module, &self.values, v, &opts).map(Arc::new).map_err(|e| e.to_string())
             })
             .as_ref()
+    }
+
+    /// [`JitShader::record_variant`] with the light shaders of the first context with records
+    /// compiled into its light loops ([`inline_lights`]; compiled when that context first runs
+    /// the shader, if they all can be), when it runs `records`: when every record with code is
+    /// one of those lights. Scenes keep their lights, so that is every later context of the
+    /// render; another light set runs [`JitShader::record_variant`].
+    fn inline_variant(&self, v: Variant, records: &[LightRecord]) -> Option<&Arc<CompiledShader>> {
+        let cs = self.inline_variants[v.index()]
+            .get_or_init(|| {
+                let lights = inline_lights(records, v).ok_or("lights that cannot be compiled in")?;
+                let opts = JitOptions { light_records: true, ..self.opts.clone() };
+                compile_inlining(&self.module, &self.values, v, &opts, false, &lights)
+                    .map(Arc::new)
+                    .map_err(|e| e.to_string())
+            })
+            .as_ref()
+            .ok()?;
+        cs.runs_records(records).then_some(cs)
+    }
+
+    /// The variant run for a context with light records: [`JitShader::inline_variant`], else
+    /// [`JitShader::record_variant`].
+    fn records_variant_for(&self, v: Variant, records: &[LightRecord]) -> Option<&Arc<CompiledShader>> {
+        self.inline_variant(v, records).or_else(|| self.record_variant(v).ok())
     }
 
     /// Shades one point with compiled code (the variant of `F`; `f32` and `Dual<f32>`, one
@@ -247,11 +287,34 @@ impl JitShader {
     /// # Errors
     /// When the shader cannot be compiled so ([`compile_points`]).
     pub fn points_variant(&self, v: Variant, layout: PointsLayout) -> Result<Arc<CompiledPoints>, String> {
+        self.points_variant_for(v, layout, &[])
+    }
+
+    /// [`JitShader::points_variant`] compiling the light shaders of `records` into the light
+    /// loops when it compiles ([`JitShader::record_variant`]).
+    fn points_variant_for(
+        &self,
+        v: Variant,
+        layout: PointsLayout,
+        records: &[LightRecord],
+    ) -> Result<Arc<CompiledPoints>, String> {
         let mut cache = self.points.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
-        if let Some((_, _, r)) = cache.iter().find(|(cv, cl, _)| *cv == v && *cl == layout) {
+        // For records: code with their lights compiled in, else code that calls them (and code
+        // with lights compiled in is made once, for the first records that allow it).
+        let same = |cv: Variant, cl: PointsLayout| cv == v && cl == layout;
+        let pick = |r: &Result<Arc<CompiledPoints>, String>| match r {
+            Ok(c) if layout.light_records && c.inlines_lights() => c.runs_records(records),
+            _ => true,
+        };
+        if let Some((_, _, r)) = cache.iter().find(|(cv, cl, r)| same(*cv, *cl) && pick(r)) {
             return r.clone();
         }
-        let r = compile_points(&self.module, &self.values, v, &self.opts, layout, false)
+        let tried = cache.iter().any(|(cv, cl, r)| same(*cv, *cl) && r.as_ref().is_ok_and(|c| c.inlines_lights()));
+        let inline = match layout.light_records && !tried {
+            true => inline_lights(records, v).unwrap_or_default(),
+            false => Vec::new(),
+        };
+        let r = compile_points_inlining(&self.module, &self.values, v, &self.opts, layout, false, &inline)
             .map(Arc::new)
             .map_err(|e| e.to_string());
         cache.push((v, layout, r.clone()));
@@ -316,9 +379,9 @@ impl JitShader {
         if n == 0 {
             return Ok(true);
         }
-        let light_records = ctx.lights_as_data().is_none() && ctx.light_records().is_some();
-        let layout = PointsLayout { varying: mask, outputs: out.len(), light_records };
-        let cp = self.points_variant(v, layout).map_err(JitError)?;
+        let records = if ctx.lights_as_data().is_none() { ctx.light_records() } else { None };
+        let layout = PointsLayout { varying: mask, outputs: out.len(), light_records: records.is_some() };
+        let cp = self.points_variant_for(v, layout, records.unwrap_or(&[])).map_err(JitError)?;
         let mut dst = [core::ptr::null_mut::<f32>(); 6];
         for (d, o) in dst.iter_mut().zip(out.iter_mut()) {
             *d = o.as_mut_ptr();
@@ -418,7 +481,8 @@ impl JitShader {
             return None;
         }
         let mut n = OpCounts::default();
-        for slot in [&self.variants[v.index()], &self.record_variants[v.index()], &self.eval_variants[v.index()]] {
+        let slots = [&self.variants, &self.record_variants, &self.inline_variants, &self.eval_variants];
+        for slot in slots.map(|s| &s[v.index()]) {
             if let Some(Ok(c)) = slot.get() {
                 n += c.op_counts().unwrap_or_default();
             }
@@ -434,7 +498,8 @@ impl JitShader {
 
     /// Sets the operation counts of every compiled variant to zero ([`JitShader::op_counts`]).
     pub fn reset_op_counts(&self) {
-        for slot in self.variants.iter().chain(&self.record_variants).chain(&self.eval_variants) {
+        let slots = [&self.variants, &self.record_variants, &self.inline_variants, &self.eval_variants];
+        for slot in slots.into_iter().flatten() {
             if let Some(Ok(c)) = slot.get() {
                 c.reset_op_counts();
             }
@@ -447,11 +512,20 @@ impl JitShader {
         }
     }
 
+    /// Variant `v` as compiled for contexts with light records ([`JitOptions::light_records`])
+    /// with the light shaders of the first such context compiled in, when such a context has
+    /// run it and they could be.
+    #[must_use]
+    pub fn inline_variant_compiled(&self, v: Variant) -> Option<Arc<CompiledShader>> {
+        self.inline_variants[v.index()].get().and_then(|r| r.as_ref().ok()).cloned()
+    }
+
     /// The variants compiled so far.
     #[must_use]
     pub fn compiled(&self) -> Vec<Variant> {
         let done = |slots: &[Slot], v: Variant| matches!(slots[v.index()].get(), Some(Ok(_)));
-        Variant::ALL.into_iter().filter(|&v| done(&self.variants, v) || done(&self.record_variants, v)).collect()
+        let slots = [&self.variants, &self.record_variants, &self.inline_variants];
+        Variant::ALL.into_iter().filter(|&v| slots.iter().any(|s| done(&s[..], v))).collect()
     }
 
     /// The interpreter instance used for other float types.
@@ -584,7 +658,9 @@ impl JitShader {
         let f = if hc.records.is_null() || cs.variant.dual() {
             cs.f
         } else {
-            self.record_variant(cs.variant).map_or(cs.f, |r| r.f)
+            // SAFETY: `HostCtx::new` took the records from the context, which outlives `hc`.
+            let records = unsafe { core::slice::from_raw_parts(hc.records, hc.n_records) };
+            self.records_variant_for(cs.variant, records).map_or(cs.f, |r| r.f)
         };
         // SAFETY: the buffers have the layout the compiled code expects (the caller's
         // promise for `out`); `ctx` is a `C`, which is what the host table's shims take.
@@ -609,6 +685,7 @@ impl Shader for JitShader {
             // Parameters are compiled in: recompile on next use.
             self.variants = Default::default();
             self.record_variants = Default::default();
+            self.inline_variants = Default::default();
             self.eval_variants = Default::default();
             self.points = PointsCache::default();
         }
@@ -717,13 +794,47 @@ impl LightShader for JitShader {
     /// compiles for it and needs no callback but named spaces, which it finds in `spaces`.
     fn code_in<F: ShadingFloat>(&self, spaces: &Spaces) -> Option<LightCode> {
         let v = variant_of::<F>()?;
-        let entry = self.variant_ref(v).ok()?.light?;
+        let cs = self.variant_ref(v).ok()?;
         Some(LightCode {
-            entry: entry as *const (),
+            entry: cs.light? as *const (),
             ctx: (spaces as *const Spaces).cast(),
             host: crate::rt::light_host_table(),
             params: self.param_block.as_ptr(),
             emission: self.interp.emission().unwrap_or(Emission::Local),
+            // What `inline_lights` reads back.
+            source: Arc::as_ptr(cs).cast(),
         })
     }
+}
+
+/// The light shaders of `records`, each once, in the records' order, for a surface's variant
+/// `v` to compile into its light loops — when each record with code can be: its direct entry
+/// was handed out by [`JitShader::code_in`] for `v` (known by this crate's callback table),
+/// and there are at most [`crate::MAX_INLINE_LIGHTS`] of them.
+fn inline_lights(records: &[LightRecord], v: Variant) -> Option<Vec<InlineLight>> {
+    let ours = crate::rt::light_host_table();
+    let mut out: Vec<InlineLight> = Vec::new();
+    for c in records.iter().map(|r| &r.code) {
+        let entry = c.entry as usize;
+        if entry == 0 || out.iter().any(|l| l.entry == entry) {
+            continue;
+        }
+        if c.source.is_null() || c.host != ours || out.len() == crate::MAX_INLINE_LIGHTS {
+            return None;
+        }
+        // SAFETY: a record with this crate's callback table comes from `JitShader::code_in`,
+        // whose `source` is the compiled variant the entry belongs to, alive as long as the
+        // light (which outlives the records: `LightCode`'s promise); the count taken here
+        // keeps it alive with the code compiled from it.
+        let light = unsafe {
+            let p = c.source.cast::<CompiledShader>();
+            Arc::increment_strong_count(p);
+            Arc::from_raw(p)
+        };
+        if light.variant != v || light.light != Some(entry) || light.source.is_none() {
+            return None;
+        }
+        out.push(InlineLight { entry, light });
+    }
+    Some(out)
 }

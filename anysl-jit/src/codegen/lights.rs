@@ -619,31 +619,69 @@ impl<'c> Cg<'c, '_> {
     }
 
     /// Calls the code of record `rec` ([`LightCode`]) for the points `ps` under `mask`:
-    /// the light's `Cl` and `L`.
+    /// the light's `Cl` and `L`. With lights compiled into this code ([`Cg::inline_lights`]),
+    /// the record's entry selects one of them, run here (its buffers are its own, so that LLVM
+    /// keeps them in registers once it is inlined), and no call is left in the loop — a call
+    /// on any path would make the loop's live vectors spill on every path — so the code runs
+    /// only records whose code is among them (`JitShader` checks that before it runs it); an
+    /// entry that is not gives zeros.
     pub(super) fn call_light_code(&self, rec: PointerValue<'c>, ps: &[S<'c>], mask: M<'c>) -> (Vec<S<'c>>, Vec<S<'c>>) {
         let i64p = self.cx.i64_type().ptr_type(AddressSpace::default());
         let f32p = self.f32t.ptr_type(AddressSpace::default());
-        let i32p = self.cx.i32_type().ptr_type(AddressSpace::default());
-        let fty = self
-            .cx
-            .void_type()
-            .fn_type(&[f32p.into(), f32p.into(), i32p.into(), self.i8p().into(), i64p.into(), f32p.into()], false);
+        let fty = self.light_entry_type();
         let entry = self.record_code_field(rec, offset_of!(LightCode, entry), self.cx.i64_type().into());
-        let entry = self
-            .b
-            .build_int_to_ptr(entry.into_int_value(), fty.ptr_type(AddressSpace::default()), "")
-            .expect("inttoptr");
         let ctx = self.record_code_field(rec, offset_of!(LightCode, ctx), self.i8p().into());
         let host = self.record_code_field(rec, offset_of!(LightCode, host), i64p.into());
         let params = self.record_code_field(rec, offset_of!(LightCode, params), f32p.into());
-        let psb = self.spill(ps, false);
-        let out = self.out_buf(6, false);
-        let m = self.mask_buf_of(mask);
-        let callee = inkwell::values::CallableValue::try_from(entry).expect("callable");
-        self.b
-            .build_call(callee, &[psb.into(), out.into(), m.into(), ctx.into(), host.into(), params.into()], "")
-            .expect("call");
-        let mut v = self.unspill(out, 6, false);
+        let call = |callee: inkwell::values::CallableValue<'c>| {
+            let psb = self.spill(ps, false);
+            let out = self.out_buf(6, false);
+            let m = self.mask_buf_of(mask);
+            self.b
+                .build_call(callee, &[psb.into(), out.into(), m.into(), ctx.into(), host.into(), params.into()], "")
+                .expect("call");
+            self.unspill(out, 6, false)
+        };
+        let indirect = |cg: &Self| {
+            let p = cg.b.build_int_to_ptr(entry.into_int_value(), fty.ptr_type(AddressSpace::default()), "");
+            call(inkwell::values::CallableValue::try_from(p.expect("inttoptr")).expect("callable"))
+        };
+        let mut v = if self.inline_lights.is_empty() {
+            indirect(self)
+        } else {
+            self.inline_lights_called.set(true);
+            let func = self.cur_fn();
+            let join = self.cx.append_basic_block(func, "light.joined");
+            let other = self.cx.append_basic_block(func, "light.called");
+            let cases: Vec<_> = self
+                .inline_lights
+                .iter()
+                .map(|&(addr, _)| {
+                    (self.cx.i64_type().const_int(addr, false), self.cx.append_basic_block(func, "light.inline"))
+                })
+                .collect();
+            self.b.build_switch(entry.into_int_value(), other, &cases).expect("switch");
+            let mut arms = Vec::new();
+            for (&(_, f), &(_, bb)) in self.inline_lights.iter().zip(&cases) {
+                self.b.position_at_end(bb);
+                let out = call(f.into());
+                arms.push((out, self.b.get_insert_block().expect("positioned")));
+                self.b.build_unconditional_branch(join).expect("br");
+            }
+            self.b.position_at_end(other);
+            arms.push((vec![self.to(self.fc(0.0), Repr::V); 6], other));
+            self.b.build_unconditional_branch(join).expect("br");
+            self.b.position_at_end(join);
+            (0..6)
+                .map(|c| {
+                    let phi = self.b.build_phi(self.vt(), "").expect("phi");
+                    for (out, bb) in &arms {
+                        phi.add_incoming(&[(&out[c].v, *bb)]);
+                    }
+                    S { r: Repr::V, v: phi.as_basic_value(), d: None }
+                })
+                .collect()
+        };
         let l = v.split_off(3);
         (v, l)
     }

@@ -153,6 +153,13 @@ pub struct Cg<'c, 'm> {
     light_l: Option<SlotId>,
     /// The host callbacks the generated code calls (bit `k` for [`crate::rt::Host`] `k`).
     pub host_used: std::cell::Cell<u64>,
+    /// Light shaders compiled into the light loops over records: a record whose entry is the
+    /// address here runs the function (the light's direct entry, linked in and inlined)
+    /// instead of calling the entry ([`Cg::call_light_code`]).
+    pub inline_lights: Vec<(u64, FunctionValue<'c>)>,
+    /// Whether the generated code calls [`Cg::inline_lights`] (it has a light loop over
+    /// records with code).
+    pub inline_lights_called: std::cell::Cell<bool>,
 }
 
 /// Where a light call's normal comes from, as far as the code generator can tell: the same
@@ -190,6 +197,20 @@ pub const POINTS_NAME: &str = "anysl_shade_points";
 /// Name of a light shader's direct entry ([`anysl_core::LightCode`]).
 pub const LIGHT_NAME: &str = "anysl_light";
 
+/// Name of the direct entry of the `k`-th light shader compiled into a surface's light loops.
+#[must_use]
+pub fn inline_light_name(k: usize) -> String {
+    format!("anysl_inline_light_{k}")
+}
+
+/// Marks `f` `alwaysinline`.
+pub fn always_inline(cx: &Context, f: FunctionValue<'_>) {
+    f.add_attribute(
+        inkwell::attributes::AttributeLoc::Function,
+        cx.create_enum_attribute(inkwell::attributes::Attribute::get_named_enum_kind_id("alwaysinline"), 0),
+    );
+}
+
 impl<'c, 'm> Cg<'c, 'm> {
     /// A generator for `func` with target `t`; `rt_v`/`rt_u` resolve runtime calls
     /// ([`crate::rt::rt_addr`]) for the varying float type and for `f32`.
@@ -224,6 +245,8 @@ impl<'c, 'm> Cg<'c, 'm> {
             lights_by_renderer: false,
             light_l: None,
             host_used: std::cell::Cell::new(0),
+            inline_lights: Vec::new(),
+            inline_lights_called: std::cell::Cell::new(false),
             shapes: HashMap::new(),
             fn_attrs: Vec::new(),
             threaded_fns: 0,

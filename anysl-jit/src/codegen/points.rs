@@ -14,7 +14,6 @@
 use super::{Cg, LIGHT_NAME, POINTS_NAME};
 use crate::abi::{self, GLOBAL_VALUES};
 use crate::JitError;
-use inkwell::attributes::{Attribute, AttributeLoc};
 use inkwell::module::Linkage;
 use inkwell::types::BasicType;
 use inkwell::values::{BasicValue, FunctionValue, PointerValue};
@@ -38,10 +37,7 @@ impl<'c> Cg<'c, '_> {
             return Err(JitError("the points entry has no dual-number variants".into()));
         }
         shade.set_linkage(Linkage::Internal);
-        shade.add_attribute(
-            AttributeLoc::Function,
-            self.cx.create_enum_attribute(Attribute::get_named_enum_kind_id("alwaysinline"), 0),
-        );
+        super::always_inline(self.cx, shade);
         let i64t = self.cx.i64_type();
         let i32t = self.cx.i32_type();
         let f32p = self.f32t.ptr_type(AddressSpace::default());
@@ -137,6 +133,30 @@ impl<'c> Cg<'c, '_> {
         Ok(f)
     }
 
+    /// The type of a light shader's direct entry ([`anysl_core::LightCode::entry`]):
+    /// `void (float* ps, float* out, i32* mask, i8* ctx, i64* host, float* params)`.
+    pub(crate) fn light_entry_type(&self) -> inkwell::types::FunctionType<'c> {
+        let f32p = self.f32t.ptr_type(AddressSpace::default());
+        let i64p = self.cx.i64_type().ptr_type(AddressSpace::default());
+        let i32p = self.cx.i32_type().ptr_type(AddressSpace::default());
+        self.cx
+            .void_type()
+            .fn_type(&[f32p.into(), f32p.into(), i32p.into(), self.i8p().into(), i64p.into(), f32p.into()], false)
+    }
+
+    /// Gives `f`, a declared light entry ([`Cg::light_entry_type`]), a body that calls the
+    /// light entry at address `addr` with its arguments.
+    pub(crate) fn define_as_call(&self, f: FunctionValue<'c>, addr: u64) {
+        let bb = self.cx.append_basic_block(f, "entry");
+        self.b.position_at_end(bb);
+        let ptr = self.light_entry_type().ptr_type(AddressSpace::default());
+        let p = self.b.build_int_to_ptr(self.cx.i64_type().const_int(addr, false), ptr, "").expect("inttoptr");
+        let args: Vec<inkwell::values::BasicMetadataValueEnum<'c>> = f.get_param_iter().map(Into::into).collect();
+        let callee = inkwell::values::CallableValue::try_from(p).expect("callable");
+        self.b.build_call(callee, &args, "").expect("call");
+        self.b.build_return(None).expect("ret");
+    }
+
     /// Builds a light shader's direct entry around `shade` (which is always inlined into it):
     /// `(ps, out, mask, ctx, host, params)` — the surface points `ps` (three values one
     /// packet's width apart) become `P` in a globals block of zeros on the stack, as the
@@ -144,24 +164,10 @@ impl<'c> Cg<'c, '_> {
     /// light loops call it per light ([`anysl_core::LightCode`]); LLVM forwards the zeros
     /// and `P` into the inlined code, so no globals block is left.
     pub(crate) fn generate_light_entry(&mut self, shade: FunctionValue<'c>) -> FunctionValue<'c> {
-        shade.add_attribute(
-            AttributeLoc::Function,
-            self.cx.create_enum_attribute(Attribute::get_named_enum_kind_id("alwaysinline"), 0),
-        );
+        super::always_inline(self.cx, shade);
         let i64t = self.cx.i64_type();
         let f32p = self.f32t.ptr_type(AddressSpace::default());
-        let fty = self.cx.void_type().fn_type(
-            &[
-                f32p.into(),
-                f32p.into(),
-                self.cx.i32_type().ptr_type(AddressSpace::default()).into(),
-                self.i8p().into(),
-                i64t.ptr_type(AddressSpace::default()).into(),
-                f32p.into(),
-            ],
-            false,
-        );
-        let f = self.m.add_function(LIGHT_NAME, fty, None);
+        let f = self.m.add_function(LIGHT_NAME, self.light_entry_type(), None);
         self.set_fn_attrs(f);
         let param = |k: u32| f.get_nth_param(k).expect("light entry parameter");
         let entry = self.cx.append_basic_block(f, "entry");

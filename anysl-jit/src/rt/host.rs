@@ -367,18 +367,24 @@ unsafe extern "C" fn host_space<F: ShadingFloat, C: ShadingContext<F>>(
 
 /// The callback table of a light's direct entry ([`anysl_core::LightCode`]): its `ctx` is
 /// the light's [`Spaces`]; named spaces are the only callback such code makes (the entry is
-/// generated only then), the other slots answer nothing.
-const LIGHT_HOST_TABLE: [*const (); Host::LEN] = {
+/// generated only then), the other slots answer nothing. A `static`, so that it has one
+/// address: the JIT knows the records it made by it (a `const` is copied where it is used).
+static LIGHT_HOST_TABLE: LightHostTable = LightHostTable({
     let mut t = [light_no_host as *const (); Host::LEN];
     t[Host::Space as usize] = light_space as *const ();
     t
-};
+});
+
+/// The entries of [`LIGHT_HOST_TABLE`].
+struct LightHostTable([*const (); Host::LEN]);
+
+// SAFETY: function pointers, never written.
+unsafe impl Sync for LightHostTable {}
 
 /// [`LIGHT_HOST_TABLE`] as compiled code reads it.
 #[must_use]
 pub fn light_host_table() -> *const usize {
-    let t: &'static [*const (); Host::LEN] = &LIGHT_HOST_TABLE;
-    t.as_ptr().cast()
+    LIGHT_HOST_TABLE.0.as_ptr().cast()
 }
 
 unsafe extern "C" fn light_no_host(_: *mut c_void, _: *const u32, _: *const f32, _: *mut f32, _: u32) {}

@@ -1,5 +1,6 @@
 //! Lights with machine code ([`anysl_core::LightCode`]): the compiled surface's own light
-//! loops call a compiled `.sl` light's direct entry per light, and give what the same surface
+//! loops run a compiled `.sl` light's code per light — compiled into the loops for the lights
+//! of the first context with records, called at its direct entry for others — and give what the same surface
 //! gives calling the context's loops (which run the light through
 //! [`LightShader::light_in`]) bit for bit — for every light loop of the Table-1 shaders and the
 //! loop test shaders, at every float type the JIT compiles, with `.sl` lights alone, mixed with
@@ -160,6 +161,14 @@ fn compiled_light_loops_call_sl_lights_bit_for_bit() {
             check::<F32x8>(&name, &jit, &set, lights_name, lights);
             check::<F32x16>(&name, &jit, &set, lights_name, lights);
         }
+        // The first context with records decided the lights compiled into the loops: the three
+        // `.sl` lights of the first set (those of the others were called, and gave the same).
+        if name != "glass" && name != "bodies" {
+            for v in [Variant::F32, Variant::X4, Variant::X8, Variant::X16] {
+                let n = jit.inline_variant_compiled(v).map(|c| c.stats.inline_lights);
+                assert_eq!(n, Some(3), "{name} {v:?}: lights compiled into the light loops");
+            }
+        }
     }
 }
 
@@ -196,4 +205,52 @@ fn a_light_that_needs_the_host_has_no_direct_entry() {
     let set = PointSet::random(16, 9);
     let ctx = PointContext::<F32x8, Lamp>::new(set.globals::<F32x8>(0), &lights);
     assert!(ctx.light_records().is_none());
+}
+
+/// A light compiled into a surface's light loops reads its named spaces from its record, as
+/// its direct entry does: the gobo in a turned space, compiled into plastic's loops, gives
+/// what the context's loops give.
+#[test]
+fn a_light_compiled_into_the_loops_sees_its_own_spaces() {
+    let set = PointSet::random(256, 29);
+    let sets = light_sets();
+    let (lights_name, lights) = sets.iter().find(|(n, _)| n.starts_with("gobo")).unwrap();
+    let inc = [repo().join("shaders/rsl/include")];
+    let jit = JitShader::from_file(&repo().join("shaders/rsl/plastic.sl"), &inc, JitOptions::default()).unwrap();
+    check::<F32x8>("plastic", &jit, &set, lights_name, lights);
+    check::<f32>("plastic", &jit, &set, lights_name, lights);
+    for v in [Variant::F32, Variant::X8] {
+        assert_eq!(jit.inline_variant_compiled(v).map(|c| c.stats.inline_lights), Some(1), "{v:?}");
+    }
+}
+
+/// `anysl bench jit`'s `.sl`-light row: the Table-1 lights as `.sl` light shaders, shaded
+/// through `anysl_core::points::shade_points` — the surface runs its flavour with the three
+/// lights compiled in, and gives the context's loops' results bit for bit.
+#[test]
+fn the_table1_sl_lights_are_compiled_into_the_surface() {
+    let lights: Vec<JitShader> = anysl_shaders::table1_lights()
+        .iter()
+        .map(|l| {
+            let path = repo().join(format!("shaders/rsl/{}.sl", l.name()));
+            let mut j = JitShader::from_file(&path, &[], JitOptions::default()).unwrap();
+            for p in l.meta().params {
+                j.set_param(&p.name, &l.param(&p.name).unwrap()).unwrap();
+            }
+            j
+        })
+        .collect();
+    let set = PointSet::random(512, 31);
+    let inc = [repo().join("shaders/rsl/include")];
+    let jit = JitShader::from_file(&repo().join("shaders/rsl/plastic.sl"), &inc, JitOptions::default()).unwrap();
+    let mut out = ShadeOut::<f32>::new(set.len());
+    anysl_core::points::shade_points::<F32x8, _, JitShader>(&jit, &lights, &set, &mut out);
+    let c = jit.inline_variant_compiled(Variant::X8).expect("the flavour with the lights compiled in");
+    assert_eq!(c.stats.inline_lights, 3);
+    let (host, _) = shade::<F32x8, _>(&jit, &set, &lights, true);
+    for (k, ch) in out.channels.iter().enumerate() {
+        for (i, x) in ch.iter().enumerate() {
+            assert_eq!(x.to_bits(), host[(i / 8 * 6 + k) * 8 + i % 8], "point {i} channel {k}");
+        }
+    }
 }
