@@ -304,6 +304,20 @@ pub trait ShadingFloat:
     /// x^y for x ≥ 0 (RSL `pow`); `pow(0, y>0) = 0`; a negative base gives NaN unless y is
     /// an integer (then the sign follows the parity of y), as C `pow` does.
     fn pow(self, y: Self) -> Self;
+    /// [`ShadingFloat::pow`] of two packets, `[x[0]^y[0], x[1]^y[1]]`, the same bits: a type
+    /// may compute them in one pass (the SIMD types do, so that `Pair`'s halves share one
+    /// run of `pow`'s branches and overlap their latencies).
+    #[inline(always)]
+    fn pow2(x: [Self; 2], y: [Self; 2]) -> [Self; 2] {
+        [x[0].pow(y[0]), x[1].pow(y[1])]
+    }
+    /// [`ShadingFloat::pow2`] of four packets.
+    #[inline(always)]
+    fn pow4(x: [Self; 4], y: [Self; 4]) -> [Self; 4] {
+        let [a, b] = Self::pow2([x[0], x[1]], [y[0], y[1]]);
+        let [c, d] = Self::pow2([x[2], x[3]], [y[2], y[3]]);
+        [a, b, c, d]
+    }
     /// sin x.
     fn sin(self) -> Self;
     /// cos x.

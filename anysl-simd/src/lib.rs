@@ -378,6 +378,14 @@ macro_rules! simd_width {
                 Self(math::pow(self.0, y.0))
             }
             #[inline(always)]
+            fn pow2(x: [Self; 2], y: [Self; 2]) -> [Self; 2] {
+                math::pow(math::Gang(x.map(|v| v.0)), math::Gang(y.map(|v| v.0))).0.map(Self)
+            }
+            #[inline(always)]
+            fn pow4(x: [Self; 4], y: [Self; 4]) -> [Self; 4] {
+                math::pow(math::Gang(x.map(|v| v.0)), math::Gang(y.map(|v| v.0))).0.map(Self)
+            }
+            #[inline(always)]
             fn sin(self) -> Self {
                 Self(math::sin(self.0))
             }

@@ -203,6 +203,157 @@ impl_wide!(f32x4, i32x4, from_i32x4, rsqrt_estimate_x4);
 impl_wide!(f32x8, i32x8, from_i32x8, rsqrt_estimate_x8);
 impl_wide!(f32x16, i32x16, from_i32x16, rsqrt_estimate_x16);
 
+/// `N` packets of one `wide` type computed in lockstep ([`Wide`] for them): each operation is
+/// issued for every packet next to the others, and a mask test (`any`, `all`) asks them all,
+/// so a kernel's scalar branches (`pow`'s steering by a uniform exponent) are taken once for
+/// all packets and their dependency chains overlap inside one basic block. The kernels make a
+/// lane's bits depend on its own inputs only, whichever branch the vector takes, so each packet
+/// gets the bits it gets alone.
+#[derive(Clone, Copy)]
+pub(crate) struct Gang<W, const N: usize>(pub(crate) [W; N]);
+
+macro_rules! gang_binop {
+    ($($tr:ident $f:ident),*) => {$(
+        impl<W: Copy + $tr<Output = W>, const N: usize> $tr for Gang<W, N> {
+            type Output = Self;
+            #[inline(always)]
+            fn $f(self, r: Self) -> Self {
+                Gang(core::array::from_fn(|i| $tr::$f(self.0[i], r.0[i])))
+            }
+        }
+    )*};
+}
+gang_binop!(Add add, Sub sub, Mul mul, Div div, BitAnd bitand, BitOr bitor, BitXor bitxor);
+
+macro_rules! gang_unop {
+    ($($tr:ident $f:ident),*) => {$(
+        impl<W: Copy + $tr<Output = W>, const N: usize> $tr for Gang<W, N> {
+            type Output = Self;
+            #[inline(always)]
+            fn $f(self) -> Self {
+                Gang(self.0.map($tr::$f))
+            }
+        }
+    )*};
+}
+gang_unop!(Neg neg, Not not);
+
+macro_rules! gang_shift {
+    ($($tr:ident $f:ident),*) => {$(
+        impl<W: Copy + $tr<u32, Output = W>, const N: usize> $tr<u32> for Gang<W, N> {
+            type Output = Self;
+            #[inline(always)]
+            fn $f(self, r: u32) -> Self {
+                Gang(self.0.map(|x| $tr::$f(x, r)))
+            }
+        }
+    )*};
+}
+gang_shift!(Shl shl, Shr shr);
+
+impl<W: Wide, const N: usize> Gang<W, N> {
+    #[inline(always)]
+    fn zip(self, r: Self, f: impl Fn(W, W) -> W) -> Self {
+        Gang(core::array::from_fn(|i| f(self.0[i], r.0[i])))
+    }
+}
+
+impl<W: Wide, const N: usize> Wide for Gang<W, N> {
+    type I = Gang<W::I, N>;
+    #[inline(always)]
+    fn splat(v: f32) -> Self {
+        Gang([W::splat(v); N])
+    }
+    #[inline(always)]
+    fn splat_i(v: i32) -> Self::I {
+        Gang([W::splat_i(v); N])
+    }
+    #[inline(always)]
+    fn bits(self) -> Self::I {
+        Gang(self.0.map(W::bits))
+    }
+    #[inline(always)]
+    fn from_bits(i: Self::I) -> Self {
+        Gang(i.0.map(W::from_bits))
+    }
+    #[inline(always)]
+    fn fma(self, m: Self, a: Self) -> Self {
+        Gang(core::array::from_fn(|i| self.0[i].fma(m.0[i], a.0[i])))
+    }
+    #[inline(always)]
+    fn sqrt(self) -> Self {
+        Gang(self.0.map(W::sqrt))
+    }
+    #[inline(always)]
+    fn rsqrt_estimate(self) -> Self {
+        Gang(self.0.map(W::rsqrt_estimate))
+    }
+    #[inline(always)]
+    fn floor(self) -> Self {
+        Gang(self.0.map(W::floor))
+    }
+    #[inline(always)]
+    fn trunc(self) -> Self {
+        Gang(self.0.map(W::trunc))
+    }
+    #[inline(always)]
+    fn round_even(self) -> Self {
+        Gang(self.0.map(W::round_even))
+    }
+    #[inline(always)]
+    fn to_int(self) -> Self::I {
+        Gang(self.0.map(W::to_int))
+    }
+    #[inline(always)]
+    fn from_int(i: Self::I) -> Self {
+        Gang(i.0.map(W::from_int))
+    }
+    #[inline(always)]
+    fn hw_min(self, r: Self) -> Self {
+        self.zip(r, W::hw_min)
+    }
+    #[inline(always)]
+    fn hw_max(self, r: Self) -> Self {
+        self.zip(r, W::hw_max)
+    }
+    #[inline(always)]
+    fn lt(self, r: Self) -> Self {
+        self.zip(r, W::lt)
+    }
+    #[inline(always)]
+    fn le(self, r: Self) -> Self {
+        self.zip(r, W::le)
+    }
+    #[inline(always)]
+    fn eq(self, r: Self) -> Self {
+        self.zip(r, W::eq)
+    }
+    #[inline(always)]
+    fn select(m: Self, a: Self, b: Self) -> Self {
+        Gang(core::array::from_fn(|i| W::select(m.0[i], a.0[i], b.0[i])))
+    }
+    #[inline(always)]
+    fn eq_i(a: Self::I, b: Self::I) -> Self {
+        Gang(core::array::from_fn(|i| W::eq_i(a.0[i], b.0[i])))
+    }
+    #[inline(always)]
+    fn any(self) -> bool {
+        self.0.into_iter().fold(W::splat(0.0), |a, m| a | m).any()
+    }
+    #[inline(always)]
+    fn all(self) -> bool {
+        self.0.into_iter().fold(!W::splat(0.0), |a, m| a & m).all()
+    }
+    #[inline(always)]
+    fn map_where(self, m: Self, f: fn(f32) -> f32) -> Self {
+        Gang(core::array::from_fn(|i| self.0[i].map_where(m.0[i], f)))
+    }
+    #[inline(always)]
+    fn first(self) -> f32 {
+        self.0[0].first()
+    }
+}
+
 #[cfg(target_arch = "x86_64")]
 use core::arch::x86_64 as arch;
 

@@ -270,7 +270,19 @@ impl<F: ShadingFloat> ShadingFloat for Pair<F> {
     }
     unary!(abs, floor, ceil, round, trunc, sqrt, rsqrt, exp, exp2, ln, log2, sin, cos, tan, asin, acos, atan);
     unary!(dx, dy, value);
-    binary!(min, max, pow, atan2);
+    binary!(min, max, atan2);
+    /// Both halves through one run of `pow` where `F` computes several packets at once
+    /// ([`ShadingFloat::pow2`]), the same bits as each half alone.
+    #[inline(always)]
+    fn pow(self, y: Self) -> Self {
+        let [a, b] = F::pow2([self.0, self.1], [y.0, y.1]);
+        Self(a, b)
+    }
+    #[inline(always)]
+    fn pow2(x: [Self; 2], y: [Self; 2]) -> [Self; 2] {
+        let [a, b, c, d] = F::pow4([x[0].0, x[0].1, x[1].0, x[1].1], [y[0].0, y[0].1, y[1].0, y[1].1]);
+        [Self(a, b), Self(c, d)]
+    }
     #[inline(always)]
     fn mul_add(self, m: Self, a: Self) -> Self {
         Self(self.0.mul_add(m.0, a.0), self.1.mul_add(m.1, a.1))

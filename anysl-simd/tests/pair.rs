@@ -43,6 +43,28 @@ fn check<F: ShadingFloat>() {
         same("sqrt", x.sqrt(), [x0.sqrt(), x1.sqrt()]);
         same("max", x.max(y), [x0.max(y0), x1.max(y1)]);
         same("pow", x.pow(y), [x0.pow(y0), x1.pow(y1)]);
+        // Shininess exponents, the same in every lane (the halves share `pow`'s branches).
+        for e in [0.0, 0.5, 1.0, 2.5, 8.0, 12.5, 16.0, 3.3, -2.0] {
+            let (ax, ax0, ax1) = (x.abs(), x0.abs(), x1.abs());
+            same("pow uniform", ax.pow(Pair::c(e)), [ax0.pow(F::c(e)), ax1.pow(F::c(e))]);
+        }
+        // Four packets (`Pair<Pair<F>>`, `pow4`): a quarter's lanes are `F`'s, each exponent
+        // uniform or not.
+        let q = |k: usize| F::load(&a[(k % 2) * F::LANES..]) * F::c(if k < 2 { 1.0 } else { 0.25 });
+        let quad = Pair(Pair(q(0), q(1)), Pair(q(2), q(3)));
+        for e in [Some(12.5), Some(4.0), None] {
+            let ey = |k: usize| e.map_or_else(|| F::load(&b[(k % 2) * F::LANES..]), F::c);
+            let got = quad.pow(Pair(Pair(ey(0), ey(1)), Pair(ey(2), ey(3))));
+            for k in 0..4 {
+                let want = q(k).pow(ey(k));
+                let half = if k < 2 { got.0 } else { got.1 };
+                let g = if k % 2 == 0 { half.0 } else { half.1 };
+                for i in 0..F::LANES {
+                    let (g, w) = (g.lane(i) as f32, want.lane(i) as f32);
+                    assert!(g.to_bits() == w.to_bits() || (g.is_nan() && w.is_nan()), "pow4 {e:?} packet {k} lane {i}");
+                }
+            }
+        }
         same("exp", x.exp(), [x0.exp(), x1.exp()]);
         same("sin", x.sin(), [x0.sin(), x1.sin()]);
         same("atan2", x.atan2(y), [x0.atan2(y0), x1.atan2(y1)]);
