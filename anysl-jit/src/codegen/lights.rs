@@ -642,17 +642,14 @@ impl<'c> Cg<'c, '_> {
                 .expect("call");
             self.unspill(out, 6, false)
         };
-        let indirect = |cg: &Self| {
-            let p = cg.b.build_int_to_ptr(entry.into_int_value(), fty.ptr_type(AddressSpace::default()), "");
-            call(inkwell::values::CallableValue::try_from(p.expect("inttoptr")).expect("callable"))
-        };
         let mut v = if self.inline_lights.is_empty() {
-            indirect(self)
+            let p = self.b.build_int_to_ptr(entry.into_int_value(), fty.ptr_type(AddressSpace::default()), "");
+            call(inkwell::values::CallableValue::try_from(p.expect("inttoptr")).expect("callable"))
         } else {
             self.inline_lights_called.set(true);
             let func = self.cur_fn();
             let join = self.cx.append_basic_block(func, "light.joined");
-            let other = self.cx.append_basic_block(func, "light.called");
+            let other = self.cx.append_basic_block(func, "light.unknown");
             let cases: Vec<_> = self
                 .inline_lights
                 .iter()
