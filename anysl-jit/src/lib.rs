@@ -377,7 +377,8 @@ pub(crate) struct InlineLight {
 }
 
 /// At most this many distinct light shaders are compiled into one surface's light loops (each
-/// adds its code to the surface's compile); a scene's further lights are called.
+/// adds its code to the surface's compile); a context with more runs the flavour that calls
+/// them.
 pub const MAX_INLINE_LIGHTS: usize = 8;
 
 impl CompiledShader {
