@@ -641,17 +641,7 @@ fn build(
     let ctx = Box::new(Context::create());
     // SAFETY: the context lives in `Owned` next to everything built from it and is dropped last.
     let cref: &'static Context = unsafe { &*(ctx.as_ref() as *const Context) };
-    let target = Target {
-        lanes: variant.lanes(),
-        native: variant.native_lanes(),
-        dual: variant.dual(),
-        threaded: opts.threaded,
-        inline_noise: opts.inline_noise,
-        runtime_params: !opts.specialize,
-        output_params: opts.output_params,
-        light_records: opts.light_records,
-    };
-    let mut cg = Cg::new(cref, &m.func, target, variant.rt_resolver(), Variant::F32.rt_resolver());
+    let mut cg = Cg::new(cref, &m.func, target(variant, opts), variant.rt_resolver(), Variant::F32.rt_resolver());
     let (cpu, features) = if opts.host_cpu {
         (TargetMachine::get_host_cpu_name().to_string(), TargetMachine::get_host_cpu_features().to_string())
     } else {
@@ -695,15 +685,16 @@ fn build(
         .then(|| cg.generate_light_entry(shade));
     stats.threaded_fns = cg.threaded_fns;
     let llmod = std::mem::replace(&mut cg.m, cref.create_module("empty"));
-    let mut pinned = Vec::new();
-    for (k, (l, &(_, f))) in candidates.iter().zip(&cg.inline_lights).enumerate() {
-        if !cg.inline_lights_called.get() {
-            // No light loop over records: the code runs any records alike.
+    let pinned: Vec<InlineLight> = candidates.iter().map(|&l| l.clone()).collect();
+    if !cg.inline_lights_called.get() {
+        // No light loop over records: the code runs any records alike.
+        for &(_, f) in &cg.inline_lights {
             // SAFETY: a declaration nothing refers to.
             unsafe { f.delete() };
-            pinned.push((*l).clone());
-            continue;
         }
+        candidates.clear();
+    }
+    for (k, (l, &(_, f))) in candidates.iter().zip(&cg.inline_lights).enumerate() {
         match inline_light_module(cref, variant, l.light.source.as_ref().expect("filtered"), &cg, k) {
             Ok(lm) => {
                 llmod
@@ -719,7 +710,6 @@ fn build(
         let f = llmod.get_function(&name).ok_or_else(|| JitError(format!("{name} not linked in")))?;
         f.set_linkage(inkwell::module::Linkage::Internal);
         codegen::always_inline(cref, f);
-        pinned.push((*l).clone());
     }
     drop(cg);
     if let Err(e) = llmod.verify() {
@@ -777,6 +767,20 @@ fn build(
     ))
 }
 
+/// What code generation compiles for `variant` with `opts`.
+fn target(variant: Variant, opts: &JitOptions) -> Target {
+    Target {
+        lanes: variant.lanes(),
+        native: variant.native_lanes(),
+        dual: variant.dual(),
+        threaded: opts.threaded,
+        inline_noise: opts.inline_noise,
+        runtime_params: !opts.specialize,
+        output_params: opts.output_params,
+        light_records: opts.light_records,
+    }
+}
+
 /// The LLVM module of light `src` compiled for `variant` as the `k`-th light compiled into the
 /// surface that `surface` generates: its direct entry named [`codegen::inline_light_name`]
 /// (external until linked in), its other functions internal.
@@ -789,16 +793,7 @@ fn inline_light_module(
 ) -> Result<inkwell::module::Module<'static>, JitError> {
     let analyzed = ir_passes(&src.module, &src.values, src.opts.specialize);
     let m = analyzed.module();
-    let target = Target {
-        lanes: variant.lanes(),
-        native: variant.native_lanes(),
-        dual: false,
-        threaded: src.opts.threaded,
-        inline_noise: src.opts.inline_noise,
-        runtime_params: !src.opts.specialize,
-        output_params: false,
-        light_records: false,
-    };
+    let target = Target { output_params: false, light_records: false, ..target(variant, &src.opts) };
     let mut cg = Cg::new(cx, &m.func, target, variant.rt_resolver(), Variant::F32.rt_resolver());
     cg.layout = surface.layout;
     cg.fn_attrs = surface.fn_attrs.clone();
