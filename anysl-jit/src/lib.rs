@@ -166,6 +166,26 @@ impl Variant {
         (self.runtime().1)()[kind as usize] as usize
     }
 
+    /// The address compiled code of this multi-packet variant calls for runtime function
+    /// `kind` with `aux` when one call takes all its packets ([`rt::rt_addr_packets`]);
+    /// `None` where each packet is called on its own ([`Variant::rt_addr`]) and for
+    /// variants of one packet. Not generic, like [`Variant::rt_addr`].
+    #[must_use]
+    #[inline(never)]
+    pub fn rt_packets_addr(self, kind: rt::RtKind, aux: u32) -> Option<usize> {
+        self.rt_packets_resolver().and_then(|f| f(kind, aux))
+    }
+
+    /// Where compiled code of this variant calls a runtime function that takes all its
+    /// packets at once ([`rt::rt_addr_packets`]); `None` for variants of one packet.
+    fn rt_packets_resolver(self) -> Option<fn(rt::RtKind, u32) -> Option<usize>> {
+        match self {
+            Self::X8x4 => Some(rt::rt_addr_packets::<Pair<Pair<F32x8>>>),
+            Self::X16x2 => Some(rt::rt_addr_packets::<Pair<F32x16>>),
+            _ => None,
+        }
+    }
+
     /// Where compiled code of this variant calls for a runtime function ([`rt::rt_addr`]).
     #[inline(never)]
     fn rt_resolver(self) -> fn(rt::RtKind, u32) -> usize {
@@ -173,8 +193,8 @@ impl Variant {
     }
 
     /// The runtime of this variant's float type: [`rt::rt_addr`] and [`rt::rt_table`].
-    /// Several packets per call use the functions of one packet, called once per packet (so
-    /// the runtime library is compiled for no more float types).
+    /// Several packets per call use the functions of one packet, called once per packet,
+    /// except the few that take all packets at once ([`Variant::rt_packets_addr`]).
     fn runtime(self) -> (fn(rt::RtKind, u32) -> usize, fn() -> [abi::RtFn; 5]) {
         fn of<F: abi::JitFloat>() -> (fn(rt::RtKind, u32) -> usize, fn() -> [abi::RtFn; 5]) {
             (rt::rt_addr::<F>, rt::rt_table::<F>)
@@ -642,6 +662,7 @@ fn build(
     // SAFETY: the context lives in `Owned` next to everything built from it and is dropped last.
     let cref: &'static Context = unsafe { &*(ctx.as_ref() as *const Context) };
     let mut cg = Cg::new(cref, &m.func, target(variant, opts), variant.rt_resolver(), Variant::F32.rt_resolver());
+    cg.rt_packets = variant.rt_packets_resolver();
     let (cpu, features) = if opts.host_cpu {
         (TargetMachine::get_host_cpu_name().to_string(), TargetMachine::get_host_cpu_features().to_string())
     } else {
@@ -795,6 +816,7 @@ fn inline_light_module(
     let m = analyzed.module();
     let target = Target { output_params: false, light_records: false, ..target(variant, &src.opts) };
     let mut cg = Cg::new(cx, &m.func, target, variant.rt_resolver(), Variant::F32.rt_resolver());
+    cg.rt_packets = variant.rt_packets_resolver();
     cg.layout = surface.layout;
     cg.fn_attrs = surface.fn_attrs.clone();
     let shade = cg.generate(&analyzed, &src.values).map_err(|e| JitError(e.0))?;

@@ -48,6 +48,9 @@ impl<'c> Cg<'c, '_> {
         let addr = if uni { (self.rt_u)(kind, aux) } else { (self.rt_v)(kind, aux) };
         let fnp = self.const_fn_ptr(addr);
         if !uni && self.t.native < self.t.lanes {
+            if let Some(all) = self.rt_packets.and_then(|f| f(kind, aux)) {
+                return self.callback(self.const_fn_ptr(all), aux, args, n_out, false);
+            }
             return self.callback_per_packet(fnp, aux, args, n_out);
         }
         self.callback(fnp, aux, args, n_out, uni)

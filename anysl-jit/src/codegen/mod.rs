@@ -124,6 +124,9 @@ pub struct Cg<'c, 'm> {
     st: Option<FnState<'c>>,
     rt_v: fn(RtKind, u32) -> usize,
     rt_u: fn(RtKind, u32) -> usize,
+    /// Resolves runtime calls that take every packet of a multi-packet variant at once
+    /// ([`crate::rt::rt_addr_packets`]); `None`: each packet is called on its own.
+    pub rt_packets: Option<fn(RtKind, u32) -> Option<usize>>,
     body_count: u32,
     shapes: HashMap<String, Vec<Shape>>,
     /// Extra function attributes (`target-cpu`, `target-features`).
@@ -236,6 +239,7 @@ impl<'c, 'm> Cg<'c, 'm> {
             st: None,
             rt_v,
             rt_u,
+            rt_packets: None,
             body_count: 0,
             lit: None,
             lit_key: None,

@@ -326,7 +326,7 @@ pub fn rt_table<F: JitFloat>() -> [RtFn; 5] {
 /// of [`rt_table`].
 ///
 /// The copies exist for the 8- and 16-lane float types only (`F32x8`, `F32x16`, and so the
-/// multi-packet variants, which call them per packet): those are the variants whose speed is
+/// multi-packet variants, which call them per packet where [`rt_addr_packets`] has none): those are the variants whose speed is
 /// measured against the compiled build. Each copy inlines its whole kernel (noise above all),
 /// so every float type with copies adds about a minute to this crate's release build
 /// (docs/build.md, "Where the time goes"); the other types get the general functions.
@@ -422,6 +422,34 @@ pub fn rt_addr<F: JitFloat>(kind: RtKind, aux: u32) -> usize {
         }
     }
     rt_table::<F>()[kind as usize] as usize
+}
+
+/// A runtime function that takes every packet of a multi-packet variant in one call, for
+/// `F` = the variant's lanes as [`Pair`](anysl_simd::Pair)s of packets: the kernel runs over
+/// all packets in lockstep (each operation on every packet before the next), as the compiled
+/// build's `Pair` types do, instead of once per packet with the call's buffers in between.
+/// For `noise` and `snoise` of one to three dimensions, float or triple — the kernels noise
+/// shaders spend their time in (each copy inlines one; the two multi-packet types' 24 copies
+/// cost this crate's release build about half a minute); `None` for the rest, which is
+/// called once per packet.
+#[must_use]
+pub fn rt_addr_packets<F: JitFloat>(kind: RtKind, aux: u32) -> Option<usize> {
+    if kind != RtKind::Noise {
+        return None;
+    }
+    macro_rules! k {
+        ($($kind:ident $dims:literal $out:literal),* $(,)?) => {$({
+            const AUX: u32 = NoiseSel { kind: NoiseOp::$kind, dims: $dims, out: $out, extra: 0 }.encode();
+            if aux == AUX {
+                return Some(rt_noise_k::<F, AUX> as RtFn as usize);
+            }
+        })*};
+    }
+    k!(
+        Noise 1 1, Noise 2 1, Noise 3 1, Noise 1 3, Noise 2 3, Noise 3 3,
+        SNoise 1 1, SNoise 2 1, SNoise 3 1, SNoise 1 3, SNoise 2 3, SNoise 3 3,
+    );
+    None
 }
 
 /// Which runtime function (index into [`rt_table`]).

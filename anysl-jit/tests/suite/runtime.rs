@@ -145,3 +145,71 @@ fn inlined_runtime_noise_is_the_library_noise() {
     };
     check::<anysl_simd::F32x8>(lanes(0), lanes(3), lanes(5));
 }
+
+/// The noise copies that take every packet of a multi-packet variant in one call give each
+/// packet the bits of the one-packet copy, also when only some packets hold non-finite,
+/// huge or denormal coordinates (their kernels take a wider path for the whole call).
+#[test]
+fn all_packet_noise_is_the_per_packet_noise() {
+    fn call(addr: usize, inp: &[f32], out: &mut [f32], aux: u32) {
+        // SAFETY: `addr` is an `RtFn` (from `rt_addr`/`rt_packets_addr`) and the buffers hold
+        // the selector's arguments and results at the variant's width.
+        let f: RtFn = unsafe { core::mem::transmute::<usize, RtFn>(addr) };
+        unsafe { f(core::ptr::null_mut(), core::ptr::null(), inp.as_ptr(), out.as_mut_ptr(), aux) };
+    }
+    let odd = [f32::NAN, f32::INFINITY, -1.0e7, 3.0e-39, 2.5e9];
+    let mut checked = 0;
+    for (many, one) in [(Variant::X8x4, Variant::X8), (Variant::X16x2, Variant::X16)] {
+        let (lanes, native) = (many.lanes() as usize, one.lanes() as usize);
+        for kind in NoiseOp::ALL {
+            for dims in 1..=4 {
+                for out in [1, 3] {
+                    let aux = NoiseSel { kind, dims, out, extra: 0 }.encode();
+                    let Some(addr) = many.rt_packets_addr(RtKind::Noise, aux) else {
+                        continue;
+                    };
+                    assert!(matches!(kind, NoiseOp::Noise | NoiseOp::SNoise) && dims <= 3, "{kind:?} {dims}");
+                    // Argument k, lane l; the last packet alone gets the odd coordinates.
+                    let n_in = dims as usize;
+                    let inp: Vec<f32> = (0..n_in * lanes)
+                        .map(|i| {
+                            let (k, l) = (i / lanes, i % lanes);
+                            if l / native == lanes / native - 1 && l % 3 == k % 3 {
+                                odd[(l + k) % odd.len()]
+                            } else {
+                                -3.7 + 0.173 * l as f32 + 1.31 * k as f32
+                            }
+                        })
+                        .collect();
+                    let mut all = vec![0f32; out as usize * lanes];
+                    call(addr, &inp, &mut all, aux);
+                    for p in 0..lanes / native {
+                        let part: Vec<f32> = (0..n_in)
+                            .flat_map(|k| inp[k * lanes + p * native..k * lanes + (p + 1) * native].iter().copied())
+                            .collect();
+                        let mut want = vec![0f32; out as usize * native];
+                        call(one.rt_addr(RtKind::Noise, aux), &part, &mut want, aux);
+                        for c in 0..out as usize {
+                            for l in 0..native {
+                                let (g, w) = (all[c * lanes + p * native + l], want[c * native + l]);
+                                assert_eq!(
+                                    g.to_bits(),
+                                    w.to_bits(),
+                                    "{many:?} {kind:?} {dims}D out {out} packet {p} lane {l}"
+                                );
+                            }
+                        }
+                    }
+                    checked += 1;
+                }
+            }
+        }
+        // A call without an all-packet copy, and a variant of one packet, have none.
+        let cell = NoiseSel { kind: NoiseOp::Cell, dims: 3, out: 1, extra: 0 }.encode();
+        assert_eq!(many.rt_packets_addr(RtKind::Noise, cell), None);
+        assert_eq!(many.rt_packets_addr(RtKind::Un, Un::Sin as u32), None);
+        let snoise3 = NoiseSel { kind: NoiseOp::SNoise, dims: 3, out: 1, extra: 0 }.encode();
+        assert_eq!(one.rt_packets_addr(RtKind::Noise, snoise3), None);
+    }
+    assert_eq!(checked, 24, "noise and snoise, 1–3 dimensions, float and triple, two variants");
+}
