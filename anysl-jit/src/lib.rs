@@ -181,7 +181,6 @@ impl Variant {
     fn rt_packets_resolver(self) -> Option<fn(rt::RtKind, u32) -> Option<usize>> {
         match self {
             Self::X8x4 => Some(rt::rt_addr_packets::<Pair<Pair<F32x8>>>),
-            Self::X16x2 => Some(rt::rt_addr_packets::<Pair<F32x16>>),
             _ => None,
         }
     }

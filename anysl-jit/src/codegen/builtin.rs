@@ -381,13 +381,17 @@ impl<'c> Cg<'c, '_> {
                 if self.t.inline_noise || kind == noise::NoiseKind::Cell {
                     Val::Num(self.noise_inline(kind, &coords, rw))
                 } else {
-                    let kind = match kind {
-                        noise::NoiseKind::Unsigned => rt::NoiseOp::Noise,
-                        noise::NoiseKind::Signed => rt::NoiseOp::SNoise,
-                        noise::NoiseKind::Cell => rt::NoiseOp::Cell,
-                    };
-                    let aux = rt::NoiseSel { kind, dims, out: rw as u32, extra: 0 }.encode();
-                    Val::Num(self.rt_call(RtKind::Noise, aux, &coords, rw, false))
+                    // `noise` is `0.5 + 0.5·snoise` (`unsigned_noise`, the same two roundings
+                    // here): one runtime kernel serves both.
+                    let aux = rt::NoiseSel { kind: rt::NoiseOp::SNoise, dims, out: rw as u32, extra: 0 }.encode();
+                    let s = self.rt_call(RtKind::Noise, aux, &coords, rw, false);
+                    Val::Num(match kind {
+                        noise::NoiseKind::Unsigned => {
+                            let h = self.fc(0.5);
+                            s.into_iter().map(|x| self.add(h, self.mul(h, x))).collect()
+                        }
+                        _ => s,
+                    })
                 }
             }
             Builtin::PNoise | Builtin::PSNoise => {

@@ -47,13 +47,15 @@ impl<'c> Cg<'c, '_> {
         let uni = !force_varying && args.iter().all(|a| a.r == Repr::U);
         let addr = if uni { (self.rt_u)(kind, aux) } else { (self.rt_v)(kind, aux) };
         let fnp = self.const_fn_ptr(addr);
+        // The runtime library reads no mask (its functions compute every lane): none is
+        // written for it.
         if !uni && self.t.native < self.t.lanes {
             if let Some(all) = self.rt_packets.and_then(|f| f(kind, aux)) {
-                return self.callback(self.const_fn_ptr(all), aux, args, n_out, false);
+                return self.callback_masked(self.const_fn_ptr(all), aux, args, n_out, false, None);
             }
             return self.callback_per_packet(fnp, aux, args, n_out);
         }
-        self.callback(fnp, aux, args, n_out, uni)
+        self.callback_masked(fnp, aux, args, n_out, uni, None)
     }
 
     /// The packets of `native` lanes a vector of the variant's lanes is made of.
@@ -85,19 +87,16 @@ impl<'c> Cg<'c, '_> {
         level[0]
     }
 
-    /// [`Cg::callback`] of a runtime library function compiled for one packet, called once
-    /// per packet of a variant that shades several: each call gets its packet's lanes of the
-    /// varying arguments and of the mask (uniform arguments as they are), and the results
-    /// are put back together.
+    /// A call of a runtime library function compiled for one packet, once per packet of a
+    /// variant that shades several: each call gets its packet's lanes of the varying
+    /// arguments (uniform arguments as they are), and the results are put back together.
     fn callback_per_packet(&mut self, fnp: PointerValue<'c>, aux: u32, args: &[S<'c>], n_out: usize) -> Vec<S<'c>> {
         assert!(!self.t.dual, "several packets per call of dual numbers");
-        let mask = self.load_mask(self.st().mask).v.into_vector_value();
-        let mask_parts = self.packets_of(mask);
         let arg_parts: Vec<Option<Vec<_>>> =
             args.iter().map(|a| (a.r != Repr::U).then(|| self.packets_of(a.v.into_vector_value()))).collect();
         let lanes = self.t.lanes;
         let mut outs: Vec<Vec<inkwell::values::VectorValue<'c>>> = vec![Vec::new(); n_out];
-        for (k, m) in mask_parts.into_iter().enumerate() {
+        for k in 0..(lanes / self.t.native) as usize {
             let args_k: Vec<S<'c>> = args
                 .iter()
                 .zip(&arg_parts)
@@ -108,7 +107,7 @@ impl<'c> Cg<'c, '_> {
                 .collect();
             // One packet's widths for the buffers of this call.
             self.t.lanes = self.t.native;
-            let r = self.callback_masked(fnp, aux, &args_k, n_out, false, M { uni: false, v: m.into() });
+            let r = self.callback_masked(fnp, aux, &args_k, n_out, false, None);
             self.t.lanes = lanes;
             for (o, v) in outs.iter_mut().zip(r) {
                 o.push(v.v.into_vector_value());
@@ -223,10 +222,11 @@ impl<'c> Cg<'c, '_> {
 
     fn callback(&mut self, fnp: PointerValue<'c>, aux: u32, args: &[S<'c>], n_out: usize, uni: bool) -> Vec<S<'c>> {
         let m = self.load_mask(self.st().mask);
-        self.callback_masked(fnp, aux, args, n_out, uni, m)
+        self.callback_masked(fnp, aux, args, n_out, uni, Some(m))
     }
 
-    /// [`Cg::callback`] for the lanes of mask `m`.
+    /// [`Cg::callback`] for the lanes of mask `m`; `None`: for a callee that reads no mask
+    /// (a null pointer is passed).
     fn callback_masked(
         &mut self,
         fnp: PointerValue<'c>,
@@ -234,11 +234,14 @@ impl<'c> Cg<'c, '_> {
         args: &[S<'c>],
         n_out: usize,
         uni: bool,
-        m: M<'c>,
+        m: Option<M<'c>>,
     ) -> Vec<S<'c>> {
         let inp = self.spill(args, uni);
         let out = self.out_buf(n_out, uni);
-        let mask = self.mask_buf_of(m);
+        let mask = match m {
+            Some(m) => self.mask_buf_of(m),
+            None => self.cx.i32_type().ptr_type(AddressSpace::default()).const_null(),
+        };
         self.call_rt_fn(fnp, mask, inp, out, aux);
         self.unspill(out, n_out, uni)
     }

@@ -384,8 +384,8 @@ pub fn rt_addr<F: JitFloat>(kind: RtKind, aux: u32) -> usize {
             // Colour transforms carry their spaces in `aux`: the general function.
             RtKind::Geo if aux & 0xff == Geo::CTransform as u32 => None,
             RtKind::Geo => Geo::special_addr::<F>(aux),
+            // `noise` is called as `snoise` (the code generator adds `0.5 + 0.5·s`).
             RtKind::Noise => {
-                noise!(NoiseOp::Noise);
                 noise!(NoiseOp::SNoise);
                 noise!(NoiseOp::Cell);
                 noise!(NoiseOp::PNoise);
@@ -428,10 +428,12 @@ pub fn rt_addr<F: JitFloat>(kind: RtKind, aux: u32) -> usize {
 /// `F` = the variant's lanes as [`Pair`](anysl_simd::Pair)s of packets: the kernel runs over
 /// all packets in lockstep (each operation on every packet before the next), as the compiled
 /// build's `Pair` types do, instead of once per packet with the call's buffers in between.
-/// For `noise` and `snoise` of one to three dimensions, float or triple — the kernels noise
-/// shaders spend their time in (each copy inlines one; the two multi-packet types' 24 copies
-/// cost this crate's release build about half a minute); `None` for the rest, which is
-/// called once per packet.
+/// For `snoise` (which `noise` calls too) of one to three dimensions as a float and of three
+/// as a triple — the kernels noise shaders spend their time in — at four 8-lane packets;
+/// `None` for the rest, which is called once per packet. Each copy holds its kernel four
+/// times over (a triple: twelve), so each is a large function to compile (docs/build.md);
+/// at two 16-lane packets such copies measured no faster than two calls, and there are none.
+/// Each packet gets the bits of the one-packet copy.
 #[must_use]
 pub fn rt_addr_packets<F: JitFloat>(kind: RtKind, aux: u32) -> Option<usize> {
     if kind != RtKind::Noise {
@@ -445,10 +447,7 @@ pub fn rt_addr_packets<F: JitFloat>(kind: RtKind, aux: u32) -> Option<usize> {
             }
         })*};
     }
-    k!(
-        Noise 1 1, Noise 2 1, Noise 3 1, Noise 1 3, Noise 2 3, Noise 3 3,
-        SNoise 1 1, SNoise 2 1, SNoise 3 1, SNoise 1 3, SNoise 2 3, SNoise 3 3,
-    );
+    k!(SNoise 1 1, SNoise 2 1, SNoise 3 1, SNoise 3 3);
     None
 }
 
