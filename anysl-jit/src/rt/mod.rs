@@ -326,8 +326,8 @@ pub fn rt_table<F: JitFloat>() -> [RtFn; 5] {
 /// of [`rt_table`].
 ///
 /// The copies exist for the 8- and 16-lane float types only (`F32x8`, `F32x16`, and so the
-/// multi-packet variants, which call them per packet where [`rt_addr_packets`] has none): those are the variants whose speed is
-/// measured against the compiled build. Each copy inlines its whole kernel (noise above all),
+/// multi-packet variants, which call them per packet where [`rt_addr_packets`] has none):
+/// those are the variants whose speed is measured against the compiled build. Each copy inlines its whole kernel (noise above all),
 /// so every float type with copies adds about a minute to this crate's release build
 /// (docs/build.md, "Where the time goes"); the other types get the general functions.
 #[must_use]
