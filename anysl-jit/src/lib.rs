@@ -660,8 +660,7 @@ fn build(
     let ctx = Box::new(Context::create());
     // SAFETY: the context lives in `Owned` next to everything built from it and is dropped last.
     let cref: &'static Context = unsafe { &*(ctx.as_ref() as *const Context) };
-    let mut cg = Cg::new(cref, &m.func, target(variant, opts), variant.rt_resolver(), Variant::F32.rt_resolver());
-    cg.rt_packets = variant.rt_packets_resolver();
+    let mut cg = Cg::new(cref, &m.func, target(variant, opts), variant);
     let (cpu, features) = if opts.host_cpu {
         (TargetMachine::get_host_cpu_name().to_string(), TargetMachine::get_host_cpu_features().to_string())
     } else {
@@ -814,8 +813,7 @@ fn inline_light_module(
     let analyzed = ir_passes(&src.module, &src.values, src.opts.specialize);
     let m = analyzed.module();
     let target = Target { output_params: false, light_records: false, ..target(variant, &src.opts) };
-    let mut cg = Cg::new(cx, &m.func, target, variant.rt_resolver(), Variant::F32.rt_resolver());
-    cg.rt_packets = variant.rt_packets_resolver();
+    let mut cg = Cg::new(cx, &m.func, target, variant);
     cg.layout = surface.layout;
     cg.fn_attrs = surface.fn_attrs.clone();
     let shade = cg.generate(&analyzed, &src.values).map_err(|e| JitError(e.0))?;

@@ -258,6 +258,23 @@ impl<W: Wide, const N: usize> Gang<W, N> {
     }
 }
 
+/// `Wide` methods of a [`Gang`] that apply the packet type's method to each packet:
+/// `map:` unary (`fn(self) -> Self`), `zip:` binary (`fn(self, Self) -> Self`).
+macro_rules! gang_forward {
+    (map: $($f:ident),*) => {$(
+        #[inline(always)]
+        fn $f(self) -> Self {
+            Gang(self.0.map(W::$f))
+        }
+    )*};
+    (zip: $($f:ident),*) => {$(
+        #[inline(always)]
+        fn $f(self, r: Self) -> Self {
+            self.zip(r, W::$f)
+        }
+    )*};
+}
+
 impl<W: Wide, const N: usize> Wide for Gang<W, N> {
     type I = Gang<W::I, N>;
     #[inline(always)]
@@ -280,26 +297,8 @@ impl<W: Wide, const N: usize> Wide for Gang<W, N> {
     fn fma(self, m: Self, a: Self) -> Self {
         Gang(core::array::from_fn(|i| self.0[i].fma(m.0[i], a.0[i])))
     }
-    #[inline(always)]
-    fn sqrt(self) -> Self {
-        Gang(self.0.map(W::sqrt))
-    }
-    #[inline(always)]
-    fn rsqrt_estimate(self) -> Self {
-        Gang(self.0.map(W::rsqrt_estimate))
-    }
-    #[inline(always)]
-    fn floor(self) -> Self {
-        Gang(self.0.map(W::floor))
-    }
-    #[inline(always)]
-    fn trunc(self) -> Self {
-        Gang(self.0.map(W::trunc))
-    }
-    #[inline(always)]
-    fn round_even(self) -> Self {
-        Gang(self.0.map(W::round_even))
-    }
+    // Each packet's own op: unary ones through `map`, binary ones through `zip`.
+    gang_forward!(map: sqrt, rsqrt_estimate, floor, trunc, round_even);
     #[inline(always)]
     fn to_int(self) -> Self::I {
         Gang(self.0.map(W::to_int))
@@ -308,26 +307,7 @@ impl<W: Wide, const N: usize> Wide for Gang<W, N> {
     fn from_int(i: Self::I) -> Self {
         Gang(i.0.map(W::from_int))
     }
-    #[inline(always)]
-    fn hw_min(self, r: Self) -> Self {
-        self.zip(r, W::hw_min)
-    }
-    #[inline(always)]
-    fn hw_max(self, r: Self) -> Self {
-        self.zip(r, W::hw_max)
-    }
-    #[inline(always)]
-    fn lt(self, r: Self) -> Self {
-        self.zip(r, W::lt)
-    }
-    #[inline(always)]
-    fn le(self, r: Self) -> Self {
-        self.zip(r, W::le)
-    }
-    #[inline(always)]
-    fn eq(self, r: Self) -> Self {
-        self.zip(r, W::eq)
-    }
+    gang_forward!(zip: hw_min, hw_max, lt, le, eq);
     #[inline(always)]
     fn select(m: Self, a: Self, b: Self) -> Self {
         Gang(core::array::from_fn(|i| W::select(m.0[i], a.0[i], b.0[i])))

@@ -126,7 +126,7 @@ pub struct Cg<'c, 'm> {
     rt_u: fn(RtKind, u32) -> usize,
     /// Resolves runtime calls that take every packet of a multi-packet variant at once
     /// ([`crate::rt::rt_addr_packets`]); `None`: each packet is called on its own.
-    pub rt_packets: Option<fn(RtKind, u32) -> Option<usize>>,
+    rt_packets: Option<fn(RtKind, u32) -> Option<usize>>,
     body_count: u32,
     shapes: HashMap<String, Vec<Shape>>,
     /// Extra function attributes (`target-cpu`, `target-features`).
@@ -215,15 +215,10 @@ pub fn always_inline(cx: &Context, f: FunctionValue<'_>) {
 }
 
 impl<'c, 'm> Cg<'c, 'm> {
-    /// A generator for `func` with target `t`; `rt_v`/`rt_u` resolve runtime calls
-    /// ([`crate::rt::rt_addr`]) for the varying float type and for `f32`.
-    pub fn new(
-        cx: &'c Context,
-        func: &'m Function,
-        t: Target,
-        rt_v: fn(RtKind, u32) -> usize,
-        rt_u: fn(RtKind, u32) -> usize,
-    ) -> Self {
+    /// A generator for `func` with target `t`, calling the runtime of `variant`'s float type
+    /// for varying values ([`crate::rt::rt_addr`], and [`crate::rt::rt_addr_packets`] for its
+    /// multi-packet calls) and of `f32` for uniform ones.
+    pub fn new(cx: &'c Context, func: &'m Function, t: Target, variant: crate::Variant) -> Self {
         let m = cx.create_module("shader");
         Self {
             cx,
@@ -237,9 +232,9 @@ impl<'c, 'm> Cg<'c, 'm> {
             slots: Vec::new(),
             strs: HashMap::new(),
             st: None,
-            rt_v,
-            rt_u,
-            rt_packets: None,
+            rt_v: variant.rt_resolver(),
+            rt_u: crate::Variant::F32.rt_resolver(),
+            rt_packets: variant.rt_packets_resolver(),
             body_count: 0,
             lit: None,
             lit_key: None,
