@@ -17,7 +17,7 @@ fn probe() {
     // `LIGHTS=none` shades without lights (the cost of everything but the light loops).
     let lights = if std::env::var("LIGHTS").is_ok_and(|v| v == "none") { Vec::new() } else { table1_lights() };
     // `NOISE=call` measures the library-call noise instead of the inline IR.
-    let inline_noise = std::env::var("NOISE").map_or(true, |v| v != "call");
+    let inline_noise = Some(std::env::var("NOISE").map_or(true, |v| v != "call"));
     let specialize = std::env::var("SPEC").map_or(true, |v| v != "0");
     let opts = JitOptions { inline_noise, specialize, ..JitOptions::default() };
     for name in ["plastic", "checker", "brick", "wood", "granite", "parquet", "screen", "starball", "venus", "glass"] {

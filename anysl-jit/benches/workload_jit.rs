@@ -4,7 +4,7 @@
 //! median and best of `ROUNDS` calls (default 31), and each row's max abs error.
 //!
 //! `cargo bench -p anysl-jit --bench workload_jit`; `SHADERS=plastic,wood` selects,
-//! `ROWS=aot-x8,jit-x8` selects rows, `OPT=3` compiles at LLVM's `default<O3>` (`POINTS_OPT=2` the points entries at level 2; 3 by default), `INLINE_NOISE=1` emits the noise as IR (`JitOptions::inline_noise`); `SPECIALIZE=0` reads the parameters at run time (`JitOptions::specialize`), as the ahead-of-time shaders do; `DUMP_IR=DIR` writes each variant's optimized LLVM IR
+//! `ROWS=aot-x8,jit-x8` selects rows, `OPT=3` compiles at LLVM's `default<O3>` (`POINTS_OPT=2` the points entries at level 2; 3 by default), `INLINE_NOISE=1` emits the noise as IR in every variant, `INLINE_NOISE=0` in none (unset: the variant's default, `JitOptions::inline_noise`); `SPECIALIZE=0` reads the parameters at run time (`JitOptions::specialize`), as the ahead-of-time shaders do; `DUMP_IR=DIR` writes each variant's optimized LLVM IR
 //! to `DIR/<shader>-<variant>.ll`.
 //!
 //! `COUNT_OPS=1` also compiles each shader with `JitOptions::count_ops` and shades the same
@@ -32,7 +32,7 @@ fn main() {
     for name in &shaders {
         let sh = WorkloadShader::by_name(name).expect("a workload shader");
         let reference = reference::load_reference(sh.name()).expect("reference");
-        let inline_noise = env("INLINE_NOISE").is_some_and(|s| s == "1");
+        let inline_noise = env("INLINE_NOISE").map(|s| s == "1");
         let points_opt: u32 =
             env("POINTS_OPT").and_then(|s| s.parse().ok()).unwrap_or(JitOptions::new().points_opt_level);
         let specialize = env("SPECIALIZE").is_none_or(|s| s != "0");
@@ -70,15 +70,18 @@ fn main() {
     }
 }
 
+type P8x2 = Pair<F32x8>;
 type P8x4 = Pair<Pair<F32x8>>;
 type P16x2 = Pair<F32x16>;
 
 /// The JIT rows' variants: the code whose operations a row's run counts.
-const JIT_ROWS: [(&str, Variant); 6] = [
+const JIT_ROWS: [(&str, Variant); 8] = [
     ("jit-x8", Variant::X8),
     ("jit-x16", Variant::X16),
     ("jit-x8x4", Variant::X8x4),
     ("jit-x16x2", Variant::X16x2),
+    ("jitp-x8", Variant::X8),
+    ("jitp-x16", Variant::X16),
     ("jitp-x8x4", Variant::X8x4),
     ("jitp-x16x2", Variant::X16x2),
 ];
@@ -89,16 +92,19 @@ fn probe_runs<'a>(
     sh: &'a WorkloadShader,
     l: &'a [LightData],
     jit: &'a JitShader,
-) -> [ProbeRun<'a>; 10] {
+) -> [ProbeRun<'a>; 13] {
     [
         ("aot-x8", Box::new(|[r, g, b]: &mut _| sc.shade::<F32x8, LightData>(sh, l, 0, [r, g, b]))),
         ("jit-x8", Box::new(|[r, g, b]: &mut _| sc.shade_surface::<F32x8, _, LightData>(jit, l, 0, [r, g, b]))),
         ("aot-x16", Box::new(|[r, g, b]: &mut _| sc.shade::<F32x16, LightData>(sh, l, 0, [r, g, b]))),
         ("jit-x16", Box::new(|[r, g, b]: &mut _| sc.shade_surface::<F32x16, _, LightData>(jit, l, 0, [r, g, b]))),
+        ("aot-x8x2", Box::new(|[r, g, b]: &mut _| sc.shade::<P8x2, LightData>(sh, l, 0, [r, g, b]))),
         ("aot-x8x4", Box::new(|[r, g, b]: &mut _| sc.shade::<P8x4, LightData>(sh, l, 0, [r, g, b]))),
         ("jit-x8x4", Box::new(|[r, g, b]: &mut _| sc.shade_surface::<P8x4, _, LightData>(jit, l, 0, [r, g, b]))),
         ("aot-x16x2", Box::new(|[r, g, b]: &mut _| sc.shade::<P16x2, LightData>(sh, l, 0, [r, g, b]))),
         ("jit-x16x2", Box::new(|[r, g, b]: &mut _| sc.shade_surface::<P16x2, _, LightData>(jit, l, 0, [r, g, b]))),
+        ("jitp-x8", Box::new(|out: &mut _| points::<F32x8>(sc, jit, l, out))),
+        ("jitp-x16", Box::new(|out: &mut _| points::<F32x16>(sc, jit, l, out))),
         ("jitp-x8x4", Box::new(|out: &mut _| points::<P8x4>(sc, jit, l, out))),
         ("jitp-x16x2", Box::new(|out: &mut _| points::<P16x2>(sc, jit, l, out))),
     ]

@@ -96,6 +96,17 @@ impl Variant {
         }
     }
 
+    /// Whether the noise family is emitted as IR by default ([`JitOptions::inline_noise`]
+    /// `None`): at four 8-lane packets per call, where the IR noise, scheduled with the code
+    /// around it and without the spills a call costs, shades the noise workload shaders
+    /// 1.0–1.1× as fast as the compiled build and the calls 0.9–1.0× (`workload_jit`,
+    /// docs/benchmarks.md). Elsewhere the calls (the Table-1 shaders' one-packet variants
+    /// shade no faster with IR noise; two 16-lane packets measured within the spread).
+    #[must_use]
+    pub const fn inline_noise(self) -> bool {
+        matches!(self, Self::X8x4)
+    }
+
     /// Dual numbers.
     #[must_use]
     pub const fn dual(self) -> bool {
@@ -224,8 +235,11 @@ pub struct JitOptions {
     /// variant serves every instance and `set_param` costs no compilation.
     pub specialize: bool,
     /// Emit the noise family as inline LLVM IR (vectorized hash, derivatives dropped where
-    /// unused) instead of calling the Rust library: faster shading, longer compiles.
-    pub inline_noise: bool,
+    /// unused) instead of calling the Rust library: `Some(true)` for every variant,
+    /// `Some(false)` for none, `None` (the default) where it measured faster than the calls —
+    /// the four-packet variant [`Variant::X8x4`] ([`Variant::inline_noise`]). Inline noise
+    /// compiles 3–5× slower.
+    pub inline_noise: Option<bool>,
     /// LLVM optimization level of a points entry ([`compile_points`]: the loop over a point
     /// set with the shader inlined). 3 by default: LLVM's `default<O3>` loop passes pay around
     /// the inlined shader at two 16-lane packets per step (`workload_jit`, two alternating
@@ -249,8 +263,9 @@ pub struct JitOptions {
 }
 
 impl JitOptions {
-    /// The defaults: O2, threaded, host CPU, specialized, noise through the library (inline
-    /// noise compiled 3–5× slower and shaded no faster on the Table-1 shaders).
+    /// The defaults: O2, threaded, host CPU, specialized, noise inline where the variant
+    /// shades faster with it ([`Variant::inline_noise`]), else through the library (inline
+    /// noise compiles 3–5× slower and shaded no faster on the Table-1 shaders).
     #[must_use]
     pub const fn new() -> Self {
         Self {
@@ -258,7 +273,7 @@ impl JitOptions {
             threaded: true,
             host_cpu: true,
             specialize: true,
-            inline_noise: false,
+            inline_noise: None,
             points_opt_level: 3,
             output_params: false,
             count_ops: false,
@@ -793,7 +808,7 @@ fn target(variant: Variant, opts: &JitOptions) -> Target {
         native: variant.native_lanes(),
         dual: variant.dual(),
         threaded: opts.threaded,
-        inline_noise: opts.inline_noise,
+        inline_noise: opts.inline_noise.unwrap_or(variant.inline_noise()),
         runtime_params: !opts.specialize,
         output_params: opts.output_params,
         light_records: opts.light_records,

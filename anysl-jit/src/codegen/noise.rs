@@ -31,10 +31,11 @@ impl<'c> Cg<'c, '_> {
     pub(super) fn noise_inline(&self, kind: NoiseKind, coords: &[S<'c>], width: usize) -> Vec<S<'c>> {
         let r = coords.iter().map(|c| c.r).max().unwrap_or(Repr::U);
         let d: Vec<S<'c>> = coords.iter().map(|&c| self.to(c, r)).collect();
+        let d = self.reduce_to_period(d);
         let seeds: &[u32] = if width == 1 { &VECTOR_SEEDS[..1] } else { &VECTOR_SEEDS };
         let out: Vec<S<'c>> = match kind {
             NoiseKind::Cell => {
-                let bits: Vec<I<'c>> = d.iter().map(|&x| self.floor_bits(self.reduce_to_period(x).v)).collect();
+                let bits: Vec<I<'c>> = d.iter().map(|&x| self.floor_bits(x.v)).collect();
                 seeds
                     .iter()
                     .map(|&s| {
@@ -76,18 +77,29 @@ impl<'c> Cg<'c, '_> {
         self.sel(nan, self.to(self.fc(0.0), c.r), c)
     }
 
-    /// `x` reduced modulo the hash period where |x| ≥ 2^31 (exact), else `x` bit for bit.
-    fn reduce_to_period(&self, x: S<'c>) -> S<'c> {
-        let big = self.cmp(FloatPredicate::OGE, self.abs(x), self.fc(HASH_PERIOD * 0.5));
-        let scaled = self.mul(x, self.fc(1.0 / HASH_PERIOD));
-        let rounded = self.constant_part(scaled.r, self.unary_intr("llvm.round", scaled.v));
-        let r = self.sub(x, self.mul(self.fc(HASH_PERIOD), rounded));
-        self.sel(big, r, x)
+    /// Each coordinate reduced modulo the hash period where |x| ≥ 2^31 (exact), else `x` bit
+    /// for bit; the reduction runs only when some lane of some coordinate needs it (a branch,
+    /// as the library's `reduce_to_hash_period` takes it).
+    fn reduce_to_period(&self, d: Vec<S<'c>>) -> Vec<S<'c>> {
+        let half = self.fc(HASH_PERIOD * 0.5);
+        let bigs: Vec<M<'c>> = d.iter().map(|&x| self.cmp(FloatPredicate::OGE, self.abs(x), half)).collect();
+        let Some(any_big) = bigs.iter().copied().reduce(|a, b| self.mor(a, b)) else { return d };
+        self.when_any(any_big, d, |cg, xs| {
+            xs.iter()
+                .zip(&bigs)
+                .map(|(&x, &big)| {
+                    let scaled = cg.mul(x, cg.fc(1.0 / HASH_PERIOD));
+                    let rounded = cg.constant_part(scaled.r, cg.unary_intr("llvm.round", scaled.v));
+                    let r = cg.sub(x, cg.mul(cg.fc(HASH_PERIOD), rounded));
+                    cg.sel(big, r, x)
+                })
+                .collect()
+        })
     }
 
-    /// `(fraction, bits of floor, bits of floor + 1)` of one coordinate.
+    /// `(fraction, bits of floor, bits of floor + 1)` of one coordinate (already reduced to the
+    /// hash period).
     fn cell(&self, x: S<'c>) -> (S<'c>, I<'c>, I<'c>) {
-        let x = self.reduce_to_period(x);
         let xf = self.floor(x);
         let f = self.sub(x, xf);
         let i = self.lattice_bits(xf.v);
@@ -153,17 +165,36 @@ impl<'c> Cg<'c, '_> {
         self.ieq(a, self.iconst(h, 0))
     }
 
-    /// Perlin's 16-case 3D gradient `dot(g[h & 15], (x, y, z))` with selects.
+    /// Perlin's 16-case 3D gradient `dot(g[h & 15], (x, y, z))`: `±u ± v` with `u` = x or y
+    /// (bit 3) and `v` = y, x or z (bits 2..3 and the cases 12, 14), each sign the xor of a hash
+    /// bit moved to the float's sign bit — the library's register lookups (one rounding, the
+    /// same value) as shifts, two selects and xors.
     fn grad3(&self, h: I<'c>, x: S<'c>, y: S<'c>, z: S<'c>) -> S<'c> {
-        let h15 = self.ibin('&', h, self.iconst(h, 15));
         let lt8 = self.bit_clear(h, 8);
-        let lt4 = self.mand(self.bit_clear(h, 8), self.bit_clear(h, 4));
-        let is12or14 = self.mor(self.ieq(h15, self.iconst(h, 12)), self.ieq(h15, self.iconst(h, 14)));
+        let lt4 = self.bit_clear(h, 12);
+        let is12or14 = self.ieq(self.ibin('&', h, self.iconst(h, 13)), self.iconst(h, 12));
         let u = self.sel(lt8, x, y);
         let v = self.sel(lt4, y, self.sel(is12or14, x, z));
-        let su = self.sel(self.bit_clear(h, 1), u, self.neg(u));
-        let sv = self.sel(self.bit_clear(h, 2), v, self.neg(v));
+        let sign = self.iconst(h, 0x8000_0000);
+        let su = self.xor_sign(u, self.ibin('<', h, self.iconst(h, 31)));
+        let sv = self.xor_sign(v, self.ibin('&', self.ibin('<', h, self.iconst(h, 30)), sign));
         self.add(su, sv)
+    }
+
+    /// `s` with its sign bits (value and derivative parts alike) xored with `bits` (0 or the
+    /// sign bit per lane): a negation where the bit is set, as `neg` computes it.
+    fn xor_sign(&self, s: S<'c>, bits: I<'c>) -> S<'c> {
+        let s = match (s.r, bits.0) {
+            (Repr::U, BasicValueEnum::VectorValue(_)) => self.to(s, Repr::V),
+            _ => s,
+        };
+        let flip = |f: BasicValueEnum<'c>| -> BasicValueEnum<'c> {
+            let it = bits.0.get_type();
+            let fi = self.b.build_bit_cast(f, it, "").expect("bitcast");
+            let x = self.ibin('^', I(fi), bits).0;
+            self.b.build_bit_cast(x, f.get_type(), "").expect("bitcast")
+        };
+        S { r: s.r, v: flip(s.v), d: s.d.map(|(dx, dy)| (flip(dx), flip(dy))) }
     }
 
     /// 4D gradient: the 16 corners (±1, ±1, ±1, ±1).
@@ -225,7 +256,10 @@ impl<'c> Cg<'c, '_> {
     /// poison), and i32::MIN where it was 2^31.
     fn lattice_bits(&self, x: BasicValueEnum<'c>) -> I<'c> {
         let top = self.constant_like(x, 2_147_483_648.0);
-        let clamped = self.call_intr("llvm.minnum", &[x.get_type()], &[x, self.constant_like(x, 2_147_483_520.0)]);
+        // `x < hi ? x : hi`, one `minps` (NaN gives `hi`, in range): `llvm.minnum` would add
+        // the NaN handling it specifies.
+        let hi = self.constant_like(x, 2_147_483_520.0);
+        let clamped = self.sel_raw(self.fcmp_raw(FloatPredicate::OLT, x, hi), x, hi);
         let conv = self.fptosi(clamped);
         let at_top = self.fcmp_raw(FloatPredicate::OGE, x, top);
         I(self.sel_raw(at_top, self.iconst_like(x, i32::MIN as u32).0, conv))
@@ -277,7 +311,7 @@ impl<'c> Cg<'c, '_> {
         })
     }
 
-    /// Wrapping integer op: `+`, `*`, `^`, `&`, or `>` (logical shift right).
+    /// Wrapping integer op: `+`, `*`, `^`, `&`, `>` (logical shift right) or `<` (shift left).
     fn ibin(&self, op: char, a: I<'c>, b: I<'c>) -> I<'c> {
         macro_rules! go {
             ($x:expr, $y:expr) => {
@@ -286,6 +320,7 @@ impl<'c> Cg<'c, '_> {
                     '*' => self.b.build_int_mul($x, $y, "").expect("mul").into(),
                     '^' => self.b.build_xor($x, $y, "").expect("xor").into(),
                     '&' => self.b.build_and($x, $y, "").expect("and").into(),
+                    '<' => self.b.build_left_shift($x, $y, "").expect("shl").into(),
                     _ => self.b.build_right_shift($x, $y, false, "").expect("lshr").into(),
                 }
             };

@@ -62,9 +62,11 @@ fn inline_noise_matches_library_noise() {
     for name in ["wood", "granite", "venus", "parquet"] {
         let path = rsl_dir().join(format!("{name}.sl"));
         let inc = [rsl_dir().join("include")];
-        let lib = JitShader::from_file(&path, &inc, JitOptions::default()).unwrap();
+        let lib = JitShader::from_file(&path, &inc, JitOptions { inline_noise: Some(false), ..JitOptions::default() })
+            .unwrap();
         let inline =
-            JitShader::from_file(&path, &inc, JitOptions { inline_noise: true, ..JitOptions::default() }).unwrap();
+            JitShader::from_file(&path, &inc, JitOptions { inline_noise: Some(true), ..JitOptions::default() })
+                .unwrap();
         let run = |j: &JitShader, dual: bool, wide: bool| {
             let mut o = ShadeOut::new(set.len());
             match (dual, wide) {
@@ -78,6 +80,68 @@ fn inline_noise_matches_library_noise() {
             let d = max_diff(&run(&lib, dual, wide), &run(&inline, dual, wide));
             assert!(d <= 1e-6, "{name} dual={dual} wide={wide}: inline noise differs by {d:e}");
         }
+    }
+}
+
+/// The four-packet variant, whose noise is IR by default (`Variant::inline_noise`), gives the
+/// library noise's bits — the one-packet variant's and its own with the noise called — at
+/// every dimension and width of the family, also where some lanes of one packet of a step are
+/// beyond the hash period (±2.5e9: the period reduction runs for that step only), non-finite,
+/// huge (1e7) or denormal.
+#[test]
+fn four_packet_inline_noise_is_the_library_noise_at_extreme_coordinates() {
+    use anysl_core::points::field;
+    use anysl_core::PointContext;
+    use anysl_jit::rsl::ir::Global;
+    use anysl_simd::Pair;
+    let src = r#"
+surface noises(float k = 1.7;)
+{
+    float x = xcomp(P);
+    float y = ycomp(P);
+    float z = zcomp(P);
+    vector v = vector snoise(P * k);
+    Ci = color(snoise(x), noise(x, y) + snoise(P), noise(P, z)) + color(v);
+    Oi = color(snoise(P * 1e-3), cellnoise(P), float noise(point(z, y, x)));
+}
+"#;
+    const N: usize = 64;
+    let set = PointSet::random(N, 41);
+    let mut p: [Vec<f32>; 3] = [0, 1, 2].map(|a| set.field(field::P + a).to_vec());
+    // Lanes 40..48: the second packet of the second 32-lane step.
+    let odd = [1e7 + 0.25, 2.5e9, -3e9, f32::NAN, f32::INFINITY, -f32::INFINITY, 1e-40, 4.3e9];
+    for (k, &x) in odd.iter().enumerate() {
+        p[0][40 + k] = x;
+        p[1][40 + k] = odd[(k + 3) % 8];
+        p[2][40 + k] = -odd[(k + 5) % 8];
+    }
+    let lights = table1_lights();
+    fn run<F: ShadingFloat>(jit: &JitShader, set: &PointSet, p: &[Vec<f32>; 3], lights: &[Light]) -> Vec<u32> {
+        let mut out = vec![vec![0.0f32; N]; 6];
+        let mut ctx = PointContext::new(set.globals::<F>(0), lights);
+        let pv: [&[f32]; 3] = [&p[0], &p[1], &p[2]];
+        let mut outs: Vec<&mut [f32]> = out.iter_mut().map(Vec::as_mut_slice).collect();
+        assert!(jit.shade_points(&mut ctx, &[(Global::P, &pv)], &mut outs).unwrap(), "{} points entry", F::NAME);
+        // One NaN for all NaNs: only their presence is compared.
+        out.concat().iter().map(|&x| if x.is_nan() { f32::NAN.to_bits() } else { x.to_bits() }).collect()
+    }
+    let compile = |inline_noise| {
+        JitShader::from_source("noises.sl", src, &[], JitOptions { inline_noise, ..JitOptions::default() }).unwrap()
+    };
+    let (default, calls) = (compile(None), compile(Some(false)));
+    assert!(Variant::X8x4.inline_noise() && !Variant::X8.inline_noise());
+    let want = run::<F32x8>(&calls, &set, &p, &lights);
+    let four = run::<Pair<Pair<F32x8>>>(&default, &set, &p, &lights);
+    let four_calls = run::<Pair<Pair<F32x8>>>(&calls, &set, &p, &lights);
+    let x8_inline = run::<F32x8>(&compile(Some(true)), &set, &p, &lights);
+    for (name, got) in [("x8x4 inline", &four), ("x8x4 calls", &four_calls), ("x8 inline", &x8_inline)] {
+        let differ: Vec<usize> = (0..want.len()).filter(|&i| want[i] != got[i]).collect();
+        assert!(
+            differ.is_empty(),
+            "{name}: {} values differ from the library noise, first at {:?}",
+            differ.len(),
+            differ.first().map(|i| (i / N, i % N))
+        );
     }
 }
 
