@@ -99,8 +99,8 @@ impl Variant {
     /// Whether the noise family is emitted as IR by default ([`JitOptions::inline_noise`]
     /// `None`): at four 8-lane packets per call, where the IR noise, scheduled with the code
     /// around it and without the spills a call costs, shades the noise workload shaders
-    /// 1.0–1.1× as fast as the compiled build and the calls 0.9–1.0× (`workload_jit`,
-    /// docs/benchmarks.md). Elsewhere the calls (the Table-1 shaders' one-packet variants
+    /// 1.0–1.1× as fast as the compiled build and the calls 0.9–1.0× (`workload_jit` on a
+    /// Zen 3 host, docs/benchmarks.md). Elsewhere the calls (the Table-1 shaders' one-packet variants
     /// shade no faster with IR noise; two 16-lane packets measured within the spread).
     #[must_use]
     pub const fn inline_noise(self) -> bool {
