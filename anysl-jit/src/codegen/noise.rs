@@ -175,19 +175,18 @@ impl<'c> Cg<'c, '_> {
         let is12or14 = self.ieq(self.ibin('&', h, self.iconst(h, 13)), self.iconst(h, 12));
         let u = self.sel(lt8, x, y);
         let v = self.sel(lt4, y, self.sel(is12or14, x, z));
-        let sign = self.iconst(h, 0x8000_0000);
-        let su = self.xor_sign(u, self.ibin('<', h, self.iconst(h, 31)));
-        let sv = self.xor_sign(v, self.ibin('&', self.ibin('<', h, self.iconst(h, 30)), sign));
-        self.add(su, sv)
+        self.add(self.xor_sign(u, self.bit_to_sign(h, 0)), self.xor_sign(v, self.bit_to_sign(h, 1)))
+    }
+
+    /// Bit `k` of `h` moved to the sign bit, every other bit clear.
+    fn bit_to_sign(&self, h: I<'c>, k: u32) -> I<'c> {
+        self.ibin('&', self.ibin('<', h, self.iconst(h, 31 - k)), self.iconst(h, 0x8000_0000))
     }
 
     /// `s` with its sign bits (value and derivative parts alike) xored with `bits` (0 or the
-    /// sign bit per lane): a negation where the bit is set, as `neg` computes it.
+    /// sign bit per lane): a negation where the bit is set, as `neg` computes it. `s` and
+    /// `bits` have one shape: both come from the same (unified) coordinates.
     fn xor_sign(&self, s: S<'c>, bits: I<'c>) -> S<'c> {
-        let s = match (s.r, bits.0) {
-            (Repr::U, BasicValueEnum::VectorValue(_)) => self.to(s, Repr::V),
-            _ => s,
-        };
         let flip = |f: BasicValueEnum<'c>| -> BasicValueEnum<'c> {
             let it = bits.0.get_type();
             let fi = self.b.build_bit_cast(f, it, "").expect("bitcast");
@@ -197,11 +196,10 @@ impl<'c> Cg<'c, '_> {
         S { r: s.r, v: flip(s.v), d: s.d.map(|(dx, dy)| (flip(dx), flip(dy))) }
     }
 
-    /// 4D gradient: the 16 corners (±1, ±1, ±1, ±1).
+    /// 4D gradient: the 16 corners (±1, ±1, ±1, ±1), hash bit `k` the sign of component `k`.
     fn grad4(&self, h: I<'c>, p: [S<'c>; 4]) -> S<'c> {
-        let s = |m: u32, v: S<'c>| self.sel(self.bit_clear(h, m), v, self.neg(v));
-        let xy = self.add(s(1, p[0]), s(2, p[1]));
-        self.add(self.add(xy, s(4, p[2])), s(8, p[3]))
+        let s = |k: u32| self.xor_sign(p[k as usize], self.bit_to_sign(h, k));
+        self.add(self.add(self.add(s(0), s(1)), s(2)), s(3))
     }
 
     /// The lattice hash of the cell `c` (Teschner primes, then the `lowbias32` finaliser).
@@ -301,14 +299,7 @@ impl<'c> Cg<'c, '_> {
 
     /// The integer constant `c` shaped like `like`.
     fn iconst(&self, like: I<'c>, c: u32) -> I<'c> {
-        let k = self.cx.i32_type().const_int(u64::from(c), false);
-        I(match like.0 {
-            BasicValueEnum::VectorValue(v) => {
-                let n = v.get_type().get_size() as usize;
-                inkwell::types::VectorType::const_vector(&vec![k; n]).into()
-            }
-            _ => k.into(),
-        })
+        self.iconst_like(like.0, c)
     }
 
     /// Wrapping integer op: `+`, `*`, `^`, `&`, `>` (logical shift right) or `<` (shift left).

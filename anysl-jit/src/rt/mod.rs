@@ -327,9 +327,10 @@ pub fn rt_table<F: JitFloat>() -> [RtFn; 5] {
 ///
 /// The copies exist for the 8- and 16-lane float types only (`F32x8`, `F32x16`, and so the
 /// multi-packet variants, which call them per packet where [`rt_addr_packets`] has none):
-/// those are the variants whose speed is measured against the compiled build. Each copy inlines its whole kernel (noise above all),
-/// so every float type with copies adds about a minute to this crate's release build
-/// (docs/build.md, "Where the time goes"); the other types get the general functions.
+/// those are the variants whose speed is measured against the compiled build. Each copy
+/// inlines its whole kernel (noise above all), so every float type with copies adds about a
+/// minute to this crate's release build (docs/build.md, "Where the time goes"); the other
+/// types get the general functions.
 #[must_use]
 pub fn rt_addr<F: JitFloat>(kind: RtKind, aux: u32) -> usize {
     // `k!(f, [c…])` returns `f::<F, c>` when `aux == c`.
@@ -433,7 +434,8 @@ pub fn rt_addr<F: JitFloat>(kind: RtKind, aux: u32) -> usize {
 /// `None` for the rest, which is called once per packet. Each copy holds its kernel four
 /// times over (a triple: twelve), so each is a large function to compile (docs/build.md);
 /// at two 16-lane packets such copies measured no faster than two calls, and there are none.
-/// Each packet gets the bits of the one-packet copy.
+/// Each packet gets the bits of the one-packet copy. Called where that variant's noise is
+/// not emitted as IR (`JitOptions::inline_noise` `Some(false)`; by default it is).
 #[must_use]
 pub fn rt_addr_packets<F: JitFloat>(kind: RtKind, aux: u32) -> Option<usize> {
     if kind != RtKind::Noise {
