@@ -102,23 +102,39 @@ fn lerp<F: ShadingFloat>(t: F, a: F, b: F) -> F {
 /// binary floating point), so that the bits of its `floor` ([`ShadingFloat::lattice_bits`]) are
 /// those of `floor(x)` modulo 2^32 — what the hash would see with unbounded integers — and its fraction
 /// is that of `x`. Without it, lattice coordinates beyond ±2^31 saturate and every cell there
-/// hashes alike. Taken only when some lane needs it; the identity (bit for bit) elsewhere.
+/// hashes alike. The identity (bit for bit) where |x| < 2^31.
 #[inline(always)]
 fn reduce_to_hash_period<F: ShadingFloat>(x: F) -> F {
-    let big = x.abs().ge(F::c(HASH_PERIOD * 0.5));
+    let r = x - F::c(HASH_PERIOD) * (x * F::c(1.0 / HASH_PERIOD)).round();
+    F::select(is_big(x), r, x)
+}
+
+/// Lanes where `x` is beyond the range [`reduce_to_hash_period`] leaves alone.
+#[inline(always)]
+fn is_big<F: ShadingFloat>(x: F) -> F::Mask {
+    x.abs().ge(F::c(HASH_PERIOD * 0.5))
+}
+
+/// The coordinates `c`, each reduced to the hash period ([`reduce_to_hash_period`]); one test
+/// for all of them, and the reduction only when some lane of some coordinate needs it (a
+/// noise call then has one branch, not one per axis).
+#[inline(always)]
+fn reduce_all<F: ShadingFloat, const N: usize>(c: [F; N]) -> [F; N] {
+    let mut big = is_big(c[0]);
+    for &x in &c[1..] {
+        big = big | is_big(x);
+    }
     if big.any() {
-        let r = x - F::c(HASH_PERIOD) * (x * F::c(1.0 / HASH_PERIOD)).round();
-        F::select(big, r, x)
+        c.map(reduce_to_hash_period)
     } else {
-        x
+        c
     }
 }
 
-/// Lattice cell of one coordinate: `(floor as float, fraction, bits of floor, bits of floor+1)`,
-/// optionally wrapping the lattice with period `p` (`pnoise`).
+/// Lattice cell of one coordinate (reduced to the hash period): `(fraction, bits of floor,
+/// bits of floor+1)`, optionally wrapping the lattice with period `p` (`pnoise`).
 #[inline(always)]
 fn cell<F: ShadingFloat>(x: F, period: Option<F>) -> (F, F::Bits, F::Bits) {
-    let x = reduce_to_hash_period(x);
     let xf = x.floor();
     let f = x - xf;
     match period {
@@ -148,6 +164,8 @@ pub fn perlin3<F: ShadingFloat>(p: Vec3<F>, period: Option<Vec3<F>>, seed: u32) 
 /// the noise is pure — and with it that a dead derivative call may be deleted).
 #[inline(always)]
 fn perlin3_at<F: ShadingFloat>(p: Vec3<F>, period: Option<Vec3<F>>, seed: u32) -> F {
+    let [x, y, z] = reduce_all([p.x, p.y, p.z]);
+    let p = Vec3 { x, y, z };
     let (fx, i0, i1) = cell(p.x, period.map(|q| q.x));
     let (fy, j0, j1) = cell(p.y, period.map(|q| q.y));
     let (fz, k0, k1) = cell(p.z, period.map(|q| q.z));
@@ -176,6 +194,8 @@ pub fn perlin4<F: ShadingFloat>(p: Vec3<F>, t: F, period: Option<(Vec3<F>, F)>, 
 /// [`perlin4`], always inlined (see [`perlin3_at`]).
 #[inline(always)]
 fn perlin4_at<F: ShadingFloat>(p: Vec3<F>, t: F, period: Option<(Vec3<F>, F)>, seed: u32) -> F {
+    let [x, y, z, t] = reduce_all([p.x, p.y, p.z, t]);
+    let p = Vec3 { x, y, z };
     let (fx, i0, i1) = cell(p.x, period.map(|q| q.0.x));
     let (fy, j0, j1) = cell(p.y, period.map(|q| q.0.y));
     let (fz, k0, k1) = cell(p.z, period.map(|q| q.0.z));
@@ -417,14 +437,21 @@ pub fn vpnoise<F: ShadingFloat>(d: NoiseDomain<F>, period: NoiseDomain<F>) -> Ve
 /// Lattice bits of a domain's cell.
 #[inline(always)]
 fn cell_bits<F: ShadingFloat>(d: NoiseDomain<F>) -> ([F::Bits; 4], usize) {
-    let b = |x: F| reduce_to_hash_period(x).floor_bits();
-    let zero = F::Bits::splat(0);
-    match d {
-        NoiseDomain::D1(x) => ([b(x), zero, zero, zero], 1),
-        NoiseDomain::D2(x, y) => ([b(x), b(y), zero, zero], 2),
-        NoiseDomain::D3(p) => ([b(p.x), b(p.y), b(p.z), zero], 3),
-        NoiseDomain::D4(p, t) => ([b(p.x), b(p.y), b(p.z), b(t)], 4),
-    }
+    let (n, c) = d.to_coords(F::c(0.0));
+    let n = usize::from(n);
+    let c = match n {
+        1 => [reduce_all([c[0]])[0], c[1], c[2], c[3]],
+        2 => {
+            let [x, y] = reduce_all([c[0], c[1]]);
+            [x, y, c[2], c[3]]
+        }
+        3 => {
+            let [x, y, z] = reduce_all([c[0], c[1], c[2]]);
+            [x, y, z, c[3]]
+        }
+        _ => reduce_all(c),
+    };
+    (c.map(ShadingFloat::floor_bits), n)
 }
 
 /// RSL `cellnoise` returning float: constant on each unit cell, uniform in [0, 1).
