@@ -113,6 +113,37 @@ pub struct Globals<F> {
 }
 
 impl<F: ShadingFloat> Globals<F> {
+    /// Globals with `P` = `p` and every other one zero: what a light shader's run sees (`P`
+    /// the surface point).
+    #[must_use]
+    pub fn at(p: Vec3<F>) -> Self {
+        let zero = F::c(0.0);
+        Self {
+            P: p,
+            N: Vec3::zero(),
+            Ng: Vec3::zero(),
+            I: Vec3::zero(),
+            E: Vec3::zero(),
+            s: zero,
+            t: zero,
+            u: zero,
+            v: zero,
+            du: zero,
+            dv: zero,
+            dPdu: Vec3::zero(),
+            dPdv: Vec3::zero(),
+            Cs: Color::zero(),
+            Os: Color::zero(),
+        }
+    }
+
+    /// What an imager shader sees for `px`: `P` its raster position, `Cs` and `Os` its `Ci`
+    /// and `Oi`, every other global zero.
+    #[must_use]
+    pub fn imager(px: &crate::ImagerPixel<F>) -> Self {
+        Self { Cs: px.Ci, Os: px.Oi, ..Self::at(px.P) }
+    }
+
     /// Sets every global outside `read` to NaN: shading with the result shows whether a
     /// shader's [`SurfaceShader::globals_read`](crate::SurfaceShader::globals_read) is right
     /// (the tests compare it bit for bit with shading the intact globals).

@@ -451,6 +451,19 @@ pub trait ImagerShader: Shader {
     /// The pixel after the shader (its `Ci`, `Oi`, `alpha`; `P` as given), for the live lanes
     /// of `e`.
     fn image<F: ShadingFloat>(&self, e: &mut Exec<F>, pixel: ImagerPixel<F>) -> ImagerPixel<F>;
+
+    /// [`ImagerShader::image`] for many chunks of pixels (chunk `k` live in the lanes of
+    /// `masks[k]`), each replaced by its result; a back end that runs a batch faster than its
+    /// chunks one by one (the interpreter decodes each op once per batch) overrides it.
+    ///
+    /// # Panics
+    /// When `masks` is shorter than `pixels`.
+    fn image_batch<F: ShadingFloat>(&self, pixels: &mut [ImagerPixel<F>], masks: &[F::Mask]) {
+        assert!(masks.len() >= pixels.len(), "{} chunks, {} masks", pixels.len(), masks.len());
+        for (px, &m) in pixels.iter_mut().zip(masks) {
+            *px = self.image(&mut Exec::with_mask(m), *px);
+        }
+    }
 }
 
 /// Declares a shader's parameter struct with defaults, metadata and set/get by name.

@@ -181,7 +181,11 @@ pub fn output_layout_is_buffer<G: JitFloat>() -> bool {
         && (!G::DUAL || G::dual_offsets() == [lane_bytes, 2 * lane_bytes])
 }
 
-/// Order of the outputs: `Ci`, `Oi` (surface), `P`, `N` (displacement).
+/// Where an imager shader's `alpha` is in the output buffer (after `Ci`, `Oi`): one value.
+pub const IMAGER_ALPHA: usize = 6;
+
+/// Order of the outputs: `Ci`, `Oi` (surface), `P`, `N` (displacement). Volume and imager
+/// shaders find `Ci`, `Oi` (and an imager its `alpha` at [`IMAGER_ALPHA`]) there on entry.
 pub const OUTPUT_ORDER: [(anysl_rsl::ir::Global, usize); 4] = {
     use anysl_rsl::ir::Global as G;
     [(G::Ci, 0), (G::Oi, 3), (G::P, 6), (G::N, 9)]

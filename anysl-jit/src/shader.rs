@@ -12,7 +12,10 @@ use anysl_ad::Dual;
 use anysl_core::points::{PointSet, ShadeOut};
 use anysl_core::prelude::*;
 use anysl_core::shader::{ParamError, ParamValue, ShaderMeta};
-use anysl_core::{Emission, LightCode, LightOutput, LightRecord, LightShader, LightSource, PointContext, Spaces};
+use anysl_core::{
+    Emission, ImagerPixel, ImagerShader, LightCode, LightOutput, LightRecord, LightShader, LightSource, PointContext,
+    Spaces, VolumeShader,
+};
 use anysl_rsl::back::interp::{InterpShader, LightCtx, Program};
 use anysl_rsl::ir::{Const, Global, Module};
 use anysl_rsl::CompileOptions;
@@ -576,6 +579,56 @@ impl JitShader {
         (Vec3::new(rd(6), rd(7), rd(8)), Vec3::new(rd(9), rd(10), rd(11)))
     }
 
+    /// A volume shader's run: `Ci`, `Oi` go into the output buffer, where the code finds them
+    /// on entry and leaves what it makes of them.
+    fn run_volume<F: ShadingFloat, C: ShadingContext<F>, G: JitFloat>(
+        &self,
+        cs: &CompiledShader,
+        ctx: &mut C,
+        e: &Exec<F>,
+        entering: SurfaceOutput<F>,
+    ) -> SurfaceOutput<F> {
+        assert!(crate::abi::output_layout_is_buffer::<G>(), "SurfaceOutput layout differs from the JIT's");
+        let mut out = std::mem::MaybeUninit::<SurfaceOutput<G>>::uninit();
+        let o = out.as_mut_ptr().cast::<f32>();
+        let (ci, oi) = (entering.Ci, entering.Oi);
+        for (k, c) in [ci.r, ci.g, ci.b, oi.r, oi.g, oi.b].into_iter().enumerate() {
+            // SAFETY: six values of `G`, `STRIDE` floats apart, fill a `SurfaceOutput<G>`; F is G.
+            unsafe { cast::<F, G>(c).write(o.add(k * G::STRIDE)) };
+        }
+        // SAFETY: a volume shader's code reads and writes `Ci` and `Oi`, the six values above.
+        unsafe { self.invoke::<F, C, G>(cs, ctx, e, o) };
+        // SAFETY: all six values are written (above, and by the code); F and G are the same type.
+        let rd = |k: usize| cast::<G, F>(unsafe { G::read(o.add(k * G::STRIDE)) });
+        SurfaceOutput { Ci: Color::new(rd(0), rd(1), rd(2)), Oi: Color::new(rd(3), rd(4), rd(5)) }
+    }
+
+    /// An imager shader's run on `px`: its `Ci`, `Oi` and `alpha` go into the output buffer
+    /// (`alpha` at [`crate::abi::IMAGER_ALPHA`]), where the code finds them and leaves its own.
+    fn run_imager<F: ShadingFloat, G: JitFloat>(
+        &self,
+        cs: &CompiledShader,
+        e: &Exec<F>,
+        px: ImagerPixel<F>,
+    ) -> ImagerPixel<F> {
+        assert!(crate::abi::output_layout_is_buffer::<G>(), "SurfaceOutput layout differs from the JIT's");
+        // Two `SurfaceOutput<G>`: room for the seven values.
+        let mut out = std::mem::MaybeUninit::<[SurfaceOutput<G>; 2]>::uninit();
+        let o = out.as_mut_ptr().cast::<f32>();
+        let (ci, oi) = (px.Ci, px.Oi);
+        let vals = [ci.r, ci.g, ci.b, oi.r, oi.g, oi.b, px.alpha];
+        for (k, c) in vals.into_iter().enumerate() {
+            // SAFETY: as in `run_volume`, seven values of the twelve the buffer holds.
+            unsafe { cast::<F, G>(c).write(o.add(k * G::STRIDE)) };
+        }
+        let mut ctx = LightCtx::imager(&px);
+        // SAFETY: an imager's code reads and writes the seven values above.
+        unsafe { self.invoke::<F, LightCtx<'_, F>, G>(cs, &mut ctx, e, o) };
+        // SAFETY: the seven values are written; F and G are the same type.
+        let rd = |k: usize| cast::<G, F>(unsafe { G::read(o.add(k * G::STRIDE)) });
+        ImagerPixel { P: px.P, Ci: Color::new(rd(0), rd(1), rd(2)), Oi: Color::new(rd(3), rd(4), rd(5)), alpha: rd(6) }
+    }
+
     /// A light shader's run for the points `ps`: its `Cl` and `L` (the first two outputs).
     fn run_light<F: ShadingFloat, G: JitFloat>(
         &self,
@@ -759,6 +812,46 @@ impl DisplacementShader for JitShader {
             }
         }
         self.interp.displace(ctx, e)
+    }
+}
+
+impl VolumeShader for JitShader {
+    /// The compiled volume for the variant of `F` (`Ci`, `Oi` start as they arrive, as in the
+    /// interpreter); the interpreter for other float types.
+    fn volume<F: ShadingFloat, C: ShadingContext<F>>(
+        &self,
+        ctx: &mut C,
+        e: &mut Exec<F>,
+        entering: SurfaceOutput<F>,
+    ) -> SurfaceOutput<F> {
+        if let Some(v) = variant_of::<F>() {
+            if let Ok(cs) = self.variant_ref(v) {
+                return_as_variant!(v, F, |G| self.run_volume::<F, C, G>(cs, ctx, e, entering));
+                unreachable!(
+                    "variant_of::<{}>() named {v:?}, a type of other lanes or size",
+                    core::any::type_name::<F>()
+                );
+            }
+        }
+        self.interp.volume(ctx, e, entering)
+    }
+}
+
+impl ImagerShader for JitShader {
+    /// The compiled imager for the variant of `F` (`Ci`, `Oi`, `alpha` start as the pixel's;
+    /// `P` its raster position, `Cs`, `Os` its `Ci`, `Oi`, as in the interpreter); the
+    /// interpreter for other float types.
+    fn image<F: ShadingFloat>(&self, e: &mut Exec<F>, pixel: ImagerPixel<F>) -> ImagerPixel<F> {
+        if let Some(v) = variant_of::<F>() {
+            if let Ok(cs) = self.variant_ref(v) {
+                return_as_variant!(v, F, |G| self.run_imager::<F, G>(cs, e, pixel));
+                unreachable!(
+                    "variant_of::<{}>() named {v:?}, a type of other lanes or size",
+                    core::any::type_name::<F>()
+                );
+            }
+        }
+        self.interp.image(e, pixel)
     }
 }
 

@@ -10,9 +10,8 @@
 //! pixel, so any subset of frames or a re-run gives identical files).
 
 use crate::build::{DisplayDesc, DisplayFormat, Film, FilterKind, PixelFilter};
-use anysl_core::{Color, ImagerPixel, Vec3};
+use anysl_core::{Color, ImagerPixel, ImagerShader, Vec3};
 use anysl_renderers::CameraSpec;
-use anysl_rsl::back::interp::InterpShader;
 use std::path::Path;
 
 /// The grid of samples the renderer computes for a frame.
@@ -203,7 +202,7 @@ const IMAGER_BATCH: usize = 256;
 /// coverage): each pixel's `P` is the raster position of its centre (`x + ½`, `y + ½`, 0),
 /// `Ci` its colour, `Oi` and `alpha` its alpha; it becomes (`Ci`, `alpha`) as the shader
 /// leaves them. Values that are not finite become 0.
-pub fn run_imager(imager: &InterpShader, film: &Film, pixels: &mut [[f32; 4]]) {
+pub fn run_imager<I: ImagerShader>(imager: &I, film: &Film, pixels: &mut [[f32; 4]]) {
     let [x0, x1, y0, _] = film.crop_pixels();
     let w = (x1 - x0).max(1) as usize;
     let masks = [true; IMAGER_BATCH];

@@ -23,7 +23,7 @@ use crate::film::{reconstruct, SampleWindow};
 use crate::lights::{scene_light, LightMaker, SceneLight};
 use crate::shaders::{apply_params, ShaderLibrary};
 use crate::surface::{SceneSurface, Volumes};
-use anysl_core::{DisplacementShader, LightShader, Matrix4, Spaces, SurfaceShader};
+use anysl_core::{DisplacementShader, ImagerShader, LightShader, Matrix4, Spaces, SurfaceShader, VolumeShader};
 use anysl_renderers::Projection;
 use anysl_renderers::{Camera, Image, Scene};
 use anysl_rsl::back::interp::{InterpShader, Program};
@@ -31,7 +31,14 @@ use glam::DMat4;
 use std::collections::HashMap;
 use std::sync::Arc;
 
-/// Makes surface shaders of one back end from compiled modules, each distinct shader once.
+/// A shader back end's type for every kind of shader a scene names (the interpreter's
+/// `InterpShader`, the JIT's `JitShader`): surfaces, displacements, lights, volumes and
+/// imagers of a scene are all made by the one back end.
+pub trait SceneShader: SurfaceShader + DisplacementShader + LightShader + VolumeShader + ImagerShader + Clone {}
+
+impl<S: SurfaceShader + DisplacementShader + LightShader + VolumeShader + ImagerShader + Clone> SceneShader for S {}
+
+/// Makes the shaders of one back end from compiled modules, each distinct shader once.
 pub struct Surfaces<S> {
     /// Where shaders are found.
     pub library: ShaderLibrary,
@@ -44,7 +51,7 @@ pub struct Surfaces<S> {
     kept: Vec<(ShaderCall, S)>,
 }
 
-impl<S: SurfaceShader + DisplacementShader + LightShader + Clone> Surfaces<S> {
+impl<S: SceneShader> Surfaces<S> {
     /// Shaders made by `make` from each shader's compiled module.
     pub fn new(library: ShaderLibrary, make: impl FnMut(anysl_rsl::ir::Module) -> Result<S, String> + 'static) -> Self {
         Self { library, make: Box::new(make), cache: HashMap::new(), uses_spaces: HashMap::new(), kept: Vec::new() }
@@ -72,19 +79,40 @@ impl<S: SurfaceShader + DisplacementShader + LightShader + Clone> Surfaces<S> {
         Ok((s, warnings))
     }
 
-    /// The displacement shader for `call` with its parameters set, the warnings that gave,
-    /// and whether it names a coordinate system.
+    /// The shader of `call` for `stage` (displacement, volume, imager: made like the
+    /// surfaces) with its parameters set, the warnings that gave, and whether it names a
+    /// coordinate system.
     ///
     /// # Errors
-    /// The shader cannot be found or compiled, or is not a displacement shader.
-    fn displacement(&mut self, call: &ShaderCall) -> Result<(S, Vec<String>, bool), String> {
+    /// The shader cannot be found or compiled, or is of another kind than `stage` takes.
+    fn stage(&mut self, call: &ShaderCall, stage: Stage) -> Result<(S, Vec<String>, bool), String> {
         let name = &call.name;
         let kind = self.library.module(name).map_err(|e| format!("{}{e}", at(call)))?.kind;
-        if kind != anysl_rsl::ir::ShaderKind::Displacement {
-            return Err(kind_error(call, kind, Stage::Displacement));
+        if kind != stage.kind() {
+            return Err(kind_error(call, kind, stage));
         }
-        let (shader, warnings) = self.for_call(call)?;
+        let (shader, warnings) = self.for_call(call).map_err(|e| format!("{}{} {e}", at(call), kind_word(stage)))?;
         Ok((shader, warnings, self.uses_spaces.get(name).copied().unwrap_or(false)))
+    }
+
+    /// [`Surfaces::stage`] for a request whose shader may be missing: a shader not found is
+    /// left out with a warning naming it (`None`); its parameter warnings join `warnings`.
+    ///
+    /// # Errors
+    /// The shader is found but does not compile or is of another kind.
+    fn optional_stage(
+        &mut self,
+        call: &ShaderCall,
+        stage: Stage,
+        warnings: &mut Vec<String>,
+    ) -> Result<Option<(S, bool)>, String> {
+        if let Err(e) = self.library.find(&call.name) {
+            warnings.push(format!("{}{} {e}; left out", at(call), stage.request()));
+            return Ok(None);
+        }
+        let (shader, w, names_space) = self.stage(call, stage)?;
+        warnings.extend(w);
+        Ok(Some((shader, names_space)))
     }
 
     /// A fresh instance of shader `name` with its defaults.
@@ -103,7 +131,7 @@ impl<S: SurfaceShader + DisplacementShader + LightShader + Clone> Surfaces<S> {
     }
 }
 
-impl<S: SurfaceShader + DisplacementShader + LightShader + Clone> LightMaker<S> for Surfaces<S> {
+impl<S: SceneShader> LightMaker<S> for Surfaces<S> {
     fn library(&mut self) -> &mut ShaderLibrary {
         &mut self.library
     }
@@ -133,7 +161,7 @@ pub struct FrameScene<S> {
     /// Warnings (parameters that do not fit, unsupported lights, shaders left out).
     pub warnings: Vec<String>,
     /// The imager shader, run on the filtered pixels by [`FrameScene::finish`].
-    pub imager: Option<InterpShader>,
+    pub imager: Option<S>,
 }
 
 /// Builds the renderer scene of `frame` with surface shaders from `surfaces`.
@@ -142,10 +170,7 @@ pub struct FrameScene<S> {
 /// A surface shader that cannot be found or compiled, a light shader that is found but does not
 /// compile or is not a light shader, or inconsistent geometry. (A light shader that is not
 /// found is left out with a warning.)
-pub fn frame_scene<S: SurfaceShader + DisplacementShader + LightShader + Clone>(
-    frame: &FrameDesc,
-    surfaces: &mut Surfaces<S>,
-) -> Result<FrameScene<S>, String> {
+pub fn frame_scene<S: SceneShader>(frame: &FrameDesc, surfaces: &mut Surfaces<S>) -> Result<FrameScene<S>, String> {
     let mut warnings = Vec::new();
     let mut shaders = Vec::with_capacity(frame.surfaces.len());
     // Per surface slot: whether its shaders name a coordinate system.
@@ -156,7 +181,7 @@ pub fn frame_scene<S: SurfaceShader + DisplacementShader + LightShader + Clone>(
         let mut uses = surfaces.uses_spaces.get(&call.name).copied().unwrap_or(false);
         let displacement = match frame.displacements.get(k).and_then(Option::as_ref) {
             Some(d) => {
-                let (shader, w, names_space) = surfaces.displacement(d)?;
+                let (shader, w, names_space) = surfaces.stage(d, Stage::Displacement)?;
                 warnings.extend(w);
                 uses |= names_space;
                 Some(shader)
@@ -164,9 +189,9 @@ pub fn frame_scene<S: SurfaceShader + DisplacementShader + LightShader + Clone>(
             None => None,
         };
         let calls = frame.volumes.get(k).cloned().unwrap_or_default();
-        let mut volume = |call: &Option<ShaderCall>, stage: Stage| -> Result<Option<InterpShader>, String> {
+        let mut volume = |call: &Option<ShaderCall>, stage: Stage| -> Result<Option<S>, String> {
             let Some(call) = call else { return Ok(None) };
-            match optional_stage_shader(call, &mut surfaces.library, stage, &mut warnings)? {
+            match surfaces.optional_stage(call, stage, &mut warnings)? {
                 Some((shader, names_space)) => {
                     uses |= names_space;
                     Ok(Some(shader))
@@ -221,7 +246,7 @@ pub fn frame_scene<S: SurfaceShader + DisplacementShader + LightShader + Clone>(
     // The frame's depth passes, kept for the frames after it (`MakeShadow`, `shadow()`).
     crate::depth::keep_depth_maps(frame, &scene);
     let imager = match &frame.imager {
-        Some(call) => optional_stage_shader(call, &mut surfaces.library, Stage::Imager, &mut warnings)?.map(|s| s.0),
+        Some(call) => surfaces.optional_stage(call, Stage::Imager, &mut warnings)?.map(|s| s.0),
         None => None,
     };
     Ok(FrameScene { scene, window, warnings, imager })
@@ -264,30 +289,6 @@ fn at(call: &ShaderCall) -> String {
     call.loc.as_ref().map_or_else(String::new, |l| format!("{l}: "))
 }
 
-/// The shader of `call` for `stage` (run by the interpreter), its parameter warnings, and
-/// whether it names a coordinate system.
-///
-/// # Errors
-/// The shader is not found, does not compile or is of another kind.
-fn stage_shader(
-    call: &ShaderCall,
-    library: &mut ShaderLibrary,
-    stage: Stage,
-) -> Result<(InterpShader, Vec<String>, bool), String> {
-    let name = &call.name;
-    let module = library.module(name).map_err(|e| format!("{}{e}", at(call)))?;
-    if module.kind != stage.kind() {
-        return Err(kind_error(call, module.kind, stage));
-    }
-    let names_space = module.uses_spaces();
-    let module = anysl_rsl::passes::optimize(module, &anysl_rsl::passes::PassOptions::default());
-    let program =
-        Program::new(module).map_err(|e| format!("{}{} shader \"{name}\": {e}", at(call), kind_word(stage)))?;
-    let mut shader = InterpShader::new(Arc::new(program));
-    let warnings = apply_params(&mut shader, call);
-    Ok((shader, warnings, names_space))
-}
-
 /// `shader "NAME" is a surface shader; Displacement needs a displacement shader`, with the
 /// request's location.
 fn kind_error(call: &ShaderCall, found: anysl_rsl::ir::ShaderKind, stage: Stage) -> String {
@@ -306,26 +307,6 @@ fn kind_word(stage: Stage) -> &'static str {
         anysl_rsl::ir::ShaderKind::Imager => "imager",
         _ => "volume",
     }
-}
-
-/// [`stage_shader`] for a request whose shader may be missing: a shader not found is left
-/// out with a warning naming it (`None`); its parameter warnings join `warnings`.
-///
-/// # Errors
-/// The shader is found but does not compile or is of another kind.
-fn optional_stage_shader(
-    call: &ShaderCall,
-    library: &mut ShaderLibrary,
-    stage: Stage,
-    warnings: &mut Vec<String>,
-) -> Result<Option<(InterpShader, bool)>, String> {
-    if let Err(e) = library.find(&call.name) {
-        warnings.push(format!("{}{} {e}; left out", at(call), stage.request()));
-        return Ok(None);
-    }
-    let (shader, w, names_space) = stage_shader(call, library, stage)?;
-    warnings.extend(w);
-    Ok(Some((shader, names_space)))
 }
 
 /// A glam matrix (column vectors) as an RSL one (row vectors, row by row).
@@ -493,7 +474,7 @@ fn place_spaces<S: Clone>(
     out
 }
 
-impl<S> FrameScene<S> {
+impl<S: ImagerShader> FrameScene<S> {
     /// The frame's pixels (crop window, row-major RGBA before exposure, alpha = coverage)
     /// from the renderer's `image` of the samples (rendered at one sample per pixel), after
     /// the imager shader if the frame has one.

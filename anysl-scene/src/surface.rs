@@ -1,7 +1,7 @@
 //! A surface of a RIB scene: its surface shader and, when the attributes name them, the
 //! displacement shader run before it at every shaded point (from the surfaces' back end: the
-//! JIT's compiled code, or the interpreter) and the volume shaders run after it on the ray
-//! segment that reached the point (interpreted).
+//! JIT's compiled code, or the interpreter) and the volume shaders (of the same back end) run
+//! after it on the ray segment that reached the point.
 //!
 //! A ray tracer that does not re-tessellate displaces by **bump mapping**: the displacement
 //! shader runs on the true hit point; the surface shader then sees the normal it computed (`N`
@@ -24,10 +24,9 @@ use anysl_core::{
     ParamValue, Shader, ShaderMeta, ShadingContext, ShadingFloat, Spaces, SurfaceOutput, SurfaceShader, Vec3,
     VolumeShader,
 };
-use anysl_rsl::back::interp::InterpShader;
 
-/// A surface shader with an optional displacement shader of the same back end, and volume
-/// shaders (run by the interpreter).
+/// A surface shader with an optional displacement shader and volume shaders, all of one back
+/// end.
 #[derive(Clone, Debug)]
 pub struct SceneSurface<S> {
     /// The surface shader.
@@ -35,22 +34,28 @@ pub struct SceneSurface<S> {
     /// The displacement shader, if the attributes name one.
     pub displacement: Option<S>,
     /// The volume shaders the attributes name.
-    pub volumes: Volumes,
+    pub volumes: Volumes<S>,
 }
 
 /// The volume shaders of a surface (see the module docs for which runs where).
-#[derive(Clone, Debug, Default)]
-pub struct Volumes {
+#[derive(Clone, Debug)]
+pub struct Volumes<S> {
     /// `Atmosphere`.
-    pub atmosphere: Option<InterpShader>,
+    pub atmosphere: Option<S>,
     /// `Interior`.
-    pub interior: Option<InterpShader>,
+    pub interior: Option<S>,
     /// `Exterior`.
-    pub exterior: Option<InterpShader>,
+    pub exterior: Option<S>,
 }
 
-impl Volumes {
-    fn all(&self) -> impl Iterator<Item = &InterpShader> {
+impl<S> Default for Volumes<S> {
+    fn default() -> Self {
+        Self { atmosphere: None, interior: None, exterior: None }
+    }
+}
+
+impl<S: SurfaceShader + VolumeShader> Volumes<S> {
+    fn all(&self) -> impl Iterator<Item = &S> {
         [&self.atmosphere, &self.interior, &self.exterior].into_iter().flatten()
     }
 
@@ -101,7 +106,7 @@ impl Volumes {
     }
 }
 
-impl<S: Shader> Shader for SceneSurface<S> {
+impl<S: SurfaceShader + VolumeShader> Shader for SceneSurface<S> {
     fn meta(&self) -> ShaderMeta {
         let mut m = self.surface.meta();
         // A displacement's normal comes from the derivatives of the moved P.
@@ -117,7 +122,7 @@ impl<S: Shader> Shader for SceneSurface<S> {
     }
 }
 
-impl<S: SurfaceShader + DisplacementShader> SurfaceShader for SceneSurface<S> {
+impl<S: SurfaceShader + DisplacementShader + VolumeShader> SurfaceShader for SceneSurface<S> {
     fn globals_read(&self) -> GlobalSet {
         let read = self.surface.globals_read() | self.volumes.globals_read();
         match &self.displacement {

@@ -2,7 +2,7 @@
 //! `Display` written into the output directory.
 
 use crate::render::{render_any, Backend, RenderArgs, RendererName};
-use anysl_core::{DisplacementShader, LightShader, Shader, SurfaceShader};
+use anysl_core::Shader;
 use anysl_renderers::{render_packet_stats, Image, RenderOptions};
 use anysl_scene::build::{BuildOptions, FrameDesc, SceneBuilder};
 use anysl_scene::render::{frame_scene, Surfaces};
@@ -105,7 +105,7 @@ pub fn run(path: &Path, args: &RenderArgs) -> Result<(), String> {
     Ok(())
 }
 
-fn render_frame<S: SurfaceShader + DisplacementShader + LightShader + Clone>(
+fn render_frame<S: anysl_scene::render::SceneShader>(
     frame: &FrameDesc,
     surfaces: &mut Surfaces<S>,
     args: &RenderArgs,

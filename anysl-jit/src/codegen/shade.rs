@@ -101,10 +101,26 @@ impl<'c> Cg<'c, '_> {
             }
             self.light_l = Some(sid);
         }
+        // Volume and imager shaders change what arrives: their `Ci`, `Oi` (and an imager's
+        // `alpha`) start as the caller left them in the output buffer, where they also end.
+        let incoming = matches!(module.kind, ir::ShaderKind::Volume | ir::ShaderKind::Imager);
+        let incoming_at = |gl: Global| -> Option<(usize, usize)> {
+            match gl {
+                Global::Ci | Global::Oi if incoming => {
+                    abi::OUTPUT_ORDER.iter().find(|(g, _)| *g == gl).map(|&(_, o)| (o, 3))
+                }
+                Global::Alpha if module.kind == ir::ShaderKind::Imager => Some((abi::IMAGER_ALPHA, 1)),
+                _ => None,
+            }
+        };
         // Initial values: globals from the buffer, parameters from the instance, others 0.
         for (i, s) in func.slots.iter().enumerate() {
             let sid = SlotId(i as u32);
             let init: Val<'c> = match &s.kind {
+                SlotKind::Global(gl) if incoming_at(*gl).is_some() => {
+                    let (off, n) = incoming_at(*gl).expect("matched");
+                    Val::Num((off..off + n).map(|k| self.read_out(out, k)).collect())
+                }
                 SlotKind::Global(gl) => {
                     let from = match gl {
                         Global::Oi => Some(Global::Os),
@@ -166,11 +182,14 @@ impl<'c> Cg<'c, '_> {
         // Outputs: `Ci`, `Oi`, and for displacement shaders `P`, `N` (the only ones read); a
         // light shader's `Cl` and `L` in the places of `Ci` and `Oi`.
         let outputs = if module.kind == ir::ShaderKind::Displacement { 4 } else { 2 };
-        let order: Vec<(Global, usize)> = if module.kind == ir::ShaderKind::Light {
+        let mut order: Vec<(Global, usize)> = if module.kind == ir::ShaderKind::Light {
             vec![(Global::Cl, 0), (Global::L, 3)]
         } else {
             abi::OUTPUT_ORDER.into_iter().take(outputs).collect()
         };
+        if module.kind == ir::ShaderKind::Imager {
+            order.push((Global::Alpha, abi::IMAGER_ALPHA));
+        }
         for (gl, off) in order {
             let gslot = match gl {
                 Global::L => func.global_slot(gl).or(self.light_l),
@@ -181,6 +200,8 @@ impl<'c> Cg<'c, '_> {
                     Val::Num(c) => c,
                     _ => continue,
                 },
+                // What arrived stays in the buffer.
+                None if incoming_at(gl).is_some() => continue,
                 None => match gl {
                     Global::Ci | Global::Cl | Global::L => vec![self.fc(0.0); 3],
                     Global::Oi => self.read_global(Global::Os),
@@ -253,6 +274,22 @@ impl<'c> Cg<'c, '_> {
                 S { r: self.full(), v, d }
             })
             .collect()
+    }
+
+    /// Value `idx` of the output buffer (as [`Cg::write_out`] writes it), full representation.
+    fn read_out(&self, out: PointerValue<'c>, idx: usize) -> S<'c> {
+        let vt = self.vt();
+        let ld = |fo: u64| {
+            let p = unsafe { self.b.build_gep(out, &[self.cx.i64_type().const_int(fo, false)], "") }.expect("gep");
+            let p = self.b.build_pointer_cast(p, self.ptr_ty(vt), "").expect("cast");
+            let v = self.b.build_load(p, "").expect("load");
+            v.as_instruction_value().map(|i| i.set_alignment(4));
+            v
+        };
+        let base = idx as u64 * self.stride() as u64;
+        let lanes = u64::from(self.t.lanes);
+        let d = self.t.dual.then(|| (ld(base + lanes), ld(base + 2 * lanes)));
+        S { r: self.full(), v: ld(base), d }
     }
 
     fn write_out(&self, out: PointerValue<'c>, idx: usize, v: S<'c>) {

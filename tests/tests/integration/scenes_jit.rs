@@ -40,7 +40,7 @@ fn shader_dir(tag: &str, file: &str, source: &str) -> PathBuf {
 /// Renders `frame` with `surfaces` in the packet (8 lanes) or scalar renderer.
 fn render<S>(frame: &FrameDesc, surfaces: &mut Surfaces<S>, packet: bool) -> Vec<[f32; 4]>
 where
-    S: anysl_core::SurfaceShader + anysl_core::DisplacementShader + anysl_core::LightShader + Clone,
+    S: anysl_scene::render::SceneShader,
 {
     let fs = frame_scene(frame, surfaces).unwrap_or_else(|e| panic!("{e}"));
     assert!(fs.warnings.is_empty(), "{:?}", fs.warnings);
@@ -238,4 +238,62 @@ fn depth_is_zero_at_the_near_and_one_at_the_far_clipping_plane() {
             }
         }
     }
+}
+
+#[test]
+fn compiled_volume_and_imager_shaders_give_the_known_answers() {
+    // A volume shader of our own (fog written out, with a tint so that a wrong `Ci` on entry
+    // shows) and an imager that paints the empty pixels, both compiled by the JIT like the
+    // surface; the left half of the view is a constant red plane 5 units from the window.
+    let dir = shader_dir(
+        "jit-volumes",
+        "tintfog.sl",
+        "volume tintfog(float distance = 1; color background = 0; float tint = 1;)\n{\n    \
+         float d = 1 - exp(-length(I) / distance);\n    Ci = tint * mix(Ci, background, d);\n    \
+         Oi = mix(Oi, color (1, 1, 1), d);\n}\n",
+    );
+    std::fs::write(
+        dir.join("paint.sl"),
+        "imager paint(color bg = color (0, 1, 0);)\n{\n    Ci += (1 - alpha) * bg;\n    alpha = 1;\n}\n",
+    )
+    .expect("write imager");
+    let rib =
+        "Format 16 16 1 PixelSamples 1 1 PixelFilter \"box\" 1 1 Projection \"orthographic\" ScreenWindow -2 2 -2 2\n\
+               Imager \"paint\" \"bg\" [0.25 0.5 0.75]\n\
+               WorldBegin Atmosphere \"tintfog\" \"distance\" 5 \"background\" [0 0 1] \"tint\" 0.5\n\
+               Color 1 0 0 Surface \"constant\" Translate 0 0 5\n\
+               Polygon \"P\" [-5 -5 0 0 -5 0 0 5 0 -5 5 0] WorldEnd";
+    let frame = &frames("volumes.rib", rib, None)[0];
+    let mut jit = jit_surfaces(vec![dir.clone()]);
+    let mut interp = Surfaces::interpreter(ShaderLibrary::new(vec![dir], Vec::new()));
+    let f = (-1.0f32).exp();
+    for packet in [false, true] {
+        let px = render(frame, &mut jit, packet);
+        for j in 0..16 {
+            for i in 0..16 {
+                // Covered: 0.5 · (red · e^-1 + blue · (1 − e^-1)); empty: the imager's colour.
+                let want = if i < 8 { [0.5 * f, 0.0, 0.5 * (1.0 - f), 1.0] } else { [0.25, 0.5, 0.75, 1.0] };
+                let got = px[j * 16 + i];
+                for c in 0..4 {
+                    assert!(
+                        (got[c] - want[c]).abs() < 1e-5,
+                        "packet {packet}: pixel ({i}, {j}) {got:?}, expected {want:?}"
+                    );
+                }
+            }
+        }
+        let d = max_diff(&px, &render(frame, &mut interp, packet));
+        assert!(d < 1e-6, "packet {packet}: JIT and interpreter differ by {d}");
+    }
+    // Both ran compiled: the volume at the float types the renderers shade with, the imager at f32.
+    let fs = frame_scene(frame, &mut jit).expect("scene");
+    let opts = RenderOptions { threads: 1, ..RenderOptions::default() };
+    let image = render_packet::<F32x8, _, _>(&fs.scene, &opts);
+    let _ = fs.finish(&frame.film, &image);
+    let _ = render_scalar(&fs.scene, &opts);
+    let fog = fs.scene.surfaces[0].volumes.atmosphere.as_ref().expect("an atmosphere");
+    let compiled = fog.compiled();
+    assert!(compiled.contains(&anysl_jit::Variant::X8) && compiled.contains(&anysl_jit::Variant::F32), "{compiled:?}");
+    let imager = fs.imager.as_ref().expect("an imager");
+    assert!(imager.compiled().contains(&anysl_jit::Variant::F32), "{:?}", imager.compiled());
 }

@@ -8,3 +8,4 @@ mod rsl_conformance_generated;
 mod rsl_conformance_interp;
 mod rsl_generated;
 mod rsl_interp_render;
+mod stages_generated;

@@ -866,7 +866,16 @@ impl<'s, F: ShadingFloat> LightCtx<'s, F> {
     /// every other global zero.
     #[must_use]
     pub fn at(ps: Vec3<F>, spaces: &'s Spaces) -> Self {
-        Self { g: globals_at(ps), spaces }
+        Self { g: Globals::at(ps), spaces }
+    }
+}
+
+impl<F: ShadingFloat> LightCtx<'static, F> {
+    /// The context of an imager shader's run for `px`: `P` its raster position, `Cs` and `Os`
+    /// its `Ci` and `Oi`, every other global zero; the standard spaces.
+    #[must_use]
+    pub fn imager(px: &anysl_core::ImagerPixel<F>) -> Self {
+        Self { g: Globals::imager(px), spaces: Spaces::standard() }
     }
 }
 
@@ -940,28 +949,5 @@ impl LightShader for InterpShader {
         release(fr);
         let emission = self.emission().unwrap_or(Emission::Local);
         LightOutput { cl, l, lit: e.mask(), emission }
-    }
-}
-
-/// Globals with `P` = `p` and every other one zero (the globals of a light shader's run and
-/// of an imager's pixel before its own are set).
-pub(super) fn globals_at<F: ShadingFloat>(p: Vec3<F>) -> Globals<F> {
-    let zero = F::c(0.0);
-    Globals {
-        P: p,
-        N: Vec3::zero(),
-        Ng: Vec3::zero(),
-        I: Vec3::zero(),
-        E: Vec3::zero(),
-        s: zero,
-        t: zero,
-        u: zero,
-        v: zero,
-        du: zero,
-        dv: zero,
-        dPdu: Vec3::zero(),
-        dPdv: Vec3::zero(),
-        Cs: Color::zero(),
-        Os: Color::zero(),
     }
 }

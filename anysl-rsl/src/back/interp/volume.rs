@@ -1,12 +1,12 @@
 //! Volume and imager shaders run by the interpreter: programs that start with `Ci`, `Oi` (and,
 //! for imagers, `alpha`) holding what arrives instead of zero.
 
-use super::exec::{globals_at, release, run_erased_with, Incoming, InterpShader, LightCtx};
+use super::exec::{release, run_erased_with, Incoming, InterpShader, LightCtx};
 use super::frame::{Frame, Loc};
 use super::prepare::Program;
 use crate::ir::Global;
 use anysl_core::prelude::*;
-use anysl_core::{Erased, ErasedContext, ImagerPixel, ImagerShader, Spaces, VolumeShader};
+use anysl_core::{Erased, ErasedContext, ImagerPixel, ImagerShader, VolumeShader};
 
 /// Global `g` of chunk `k` after the run, if the program has it.
 fn read_color<F: ShadingFloat>(fr: &Frame<F>, p: &Program, g: Global, k: usize) -> Option<Color<F>> {
@@ -42,21 +42,12 @@ impl ImagerShader for InterpShader {
         self.image_batch(&mut px, &[e.mask()]);
         px[0]
     }
-}
 
-impl InterpShader {
-    /// [`ImagerShader::image`] for many chunks of pixels at once (chunk `k` live in lanes
-    /// `masks[k]`), each replaced by the shader's result: the ops are decoded once per batch.
-    ///
-    /// # Panics
-    /// When `masks` is shorter than `pixels`.
-    pub fn image_batch<F: ShadingFloat>(&self, pixels: &mut [ImagerPixel<F>], masks: &[F::Mask]) {
+    /// All chunks in one run of the program: the ops are decoded once per batch.
+    fn image_batch<F: ShadingFloat>(&self, pixels: &mut [ImagerPixel<F>], masks: &[F::Mask]) {
         assert!(masks.len() >= pixels.len(), "{} chunks, {} masks", pixels.len(), masks.len());
         let p = &*self.program;
-        let mut ctxs: Vec<LightCtx<'_, F>> = pixels
-            .iter()
-            .map(|px| LightCtx { g: Globals { Cs: px.Ci, Os: px.Oi, ..globals_at(px.P) }, spaces: Spaces::standard() })
-            .collect();
+        let mut ctxs: Vec<LightCtx<'_, F>> = pixels.iter().map(LightCtx::imager).collect();
         let incoming: Vec<Incoming<F>> =
             pixels.iter().map(|px| Incoming { ci: px.Ci, oi: px.Oi, alpha: px.alpha }).collect();
         let mut erased: Vec<Erased<'_, F>> = ctxs.iter_mut().map(|c| Erased(c as &mut dyn ErasedContext<F>)).collect();
@@ -88,7 +79,7 @@ mod tests {
     #[test]
     fn a_volume_shader_starts_from_the_incoming_colour() {
         let s = shader("volume half(float k = 0.5) { Ci *= k; Oi = mix(Oi, color 1, k) + length(I); }");
-        let g = globals_at(Vec3::new(1.0f32, 2.0, 3.0));
+        let g = Globals::at(Vec3::new(1.0f32, 2.0, 3.0));
         let mut ctx = PointContext::<f32, anysl_core::LightData>::new(g, &[]);
         let entering = SurfaceOutput { Ci: Color::c(0.8, 0.4, 0.2), Oi: Color::c(0.5, 0.5, 0.0) };
         let out = s.volume(&mut ctx, &mut Exec::new(), entering);

@@ -21,12 +21,6 @@ impl<'a> Gen<'a> {
             ShaderKind::Volume => "volume",
             ShaderKind::Imager => "imager",
         };
-        if !matches!(m.kind, ShaderKind::Surface | ShaderKind::Light | ShaderKind::Displacement) {
-            return Err(self.err(
-                m.params.first().map_or_else(Span::default, |p| p.span),
-                format!("generated Rust supports surface, light and displacement shaders, not {kind_kw} shaders"),
-            ));
-        }
         if self.opts.prelude {
             self.line(&format!("use {k}::prelude::*;"));
             self.line("");
@@ -84,11 +78,18 @@ impl<'a> Gen<'a> {
                 self.line("let zero = F::c(0.0);");
                 self.line("let g = Globals { P: ps, N: Vec3::zero(), Ng: Vec3::zero(), I: Vec3::zero(), E: Vec3::zero(), s: zero, t: zero, u: zero, v: zero, du: zero, dv: zero, dPdu: Vec3::zero(), dPdv: Vec3::zero(), Cs: Color::zero(), Os: Color::zero() };");
             }
-            _ => {
+            kind => {
+                // Volume and imager shaders start from what arrives (`Ci`, `Oi`; an imager's
+                // `alpha`) instead of zero.
+                let arriving = match kind {
+                    ShaderKind::Volume => format!(", arriving: {}::SurfaceOutput<F>", self.k),
+                    ShaderKind::Imager => format!(", arriving: {}::ImagerPixel<F>", self.k),
+                    _ => String::new(),
+                };
                 self.line("/// Runs the shader: every output (`Ci`, `Oi`, `P`, `N` and the output parameters).");
                 self.line("#[inline(always)]");
                 self.line(&format!(
-                    "pub fn run<F: ShadingFloat, C: ShadingContext<F>>(&self, ctx: &mut C, e: &mut Exec<F>) -> {res}<F> {{"
+                    "pub fn run<F: ShadingFloat, C: ShadingContext<F>>(&self, ctx: &mut C, e: &mut Exec<F>{arriving}) -> {res}<F> {{"
                 ));
                 self.ind += 1;
                 self.line("let g = *ctx.globals();");
@@ -328,6 +329,10 @@ impl<'a> Gen<'a> {
                 self.line(&format!("pub P: {k}::Vec3<F>,"));
                 self.line("/// `N`.");
                 self.line(&format!("pub N: {k}::Vec3<F>,"));
+                if self.m.kind == ShaderKind::Imager {
+                    self.line("/// `alpha`.");
+                    self.line("pub alpha: F,");
+                }
             }
         }
         for (name, _, t) in self.output_params() {
@@ -411,6 +416,9 @@ impl<'a> Gen<'a> {
             Global::Dv => "g.dv",
             Global::DPdu => "g.dPdu",
             Global::DPdv => "g.dPdv",
+            Global::Ci if matches!(self.m.kind, ShaderKind::Volume | ShaderKind::Imager) => "arriving.Ci",
+            Global::Oi if matches!(self.m.kind, ShaderKind::Volume | ShaderKind::Imager) => "arriving.Oi",
+            Global::Alpha if self.m.kind == ShaderKind::Imager => "arriving.alpha",
             Global::Oi => {
                 if light {
                     "Color::zero()"
@@ -493,10 +501,15 @@ impl<'a> Gen<'a> {
             };
             fields.push(if has_light { "lit".into() } else { "lit: e.mask()".into() });
         } else {
-            fields.push(format!("Ci: {}", read(self, Global::Ci, "Color::zero()")));
-            fields.push(format!("Oi: {}", read(self, Global::Oi, "g.Os")));
+            let arrives = matches!(self.m.kind, ShaderKind::Volume | ShaderKind::Imager);
+            let (ci, oi) = if arrives { ("arriving.Ci", "arriving.Oi") } else { ("Color::zero()", "g.Os") };
+            fields.push(format!("Ci: {}", read(self, Global::Ci, ci)));
+            fields.push(format!("Oi: {}", read(self, Global::Oi, oi)));
             fields.push(format!("P: {}", read(self, Global::P, "g.P")));
             fields.push(format!("N: {}", read(self, Global::N, "g.N")));
+            if self.m.kind == ShaderKind::Imager {
+                fields.push(format!("alpha: {}", read(self, Global::Alpha, "arriving.alpha")));
+            }
         }
         for (name, s, t) in self.output_params() {
             let var = self.slot_var(s);
@@ -581,6 +594,37 @@ impl<'a> Gen<'a> {
                 self.ind -= 1;
                 self.line("}");
             }
+            ShaderKind::Volume => {
+                self.line(&format!("impl {k}::VolumeShader for {ty} {{"));
+                self.ind += 1;
+                self.line("#[inline(always)]");
+                self.line(&format!(
+                    "fn volume<F: {k}::ShadingFloat, C: {k}::ShadingContext<F>>(&self, ctx: &mut C, e: &mut {k}::Exec<F>, entering: {k}::SurfaceOutput<F>) -> {k}::SurfaceOutput<F> {{"
+                ));
+                self.line("    let r = self.run(ctx, e, entering);");
+                self.line(&format!("    {k}::SurfaceOutput {{ Ci: r.Ci, Oi: r.Oi }}"));
+                self.line("}");
+                self.ind -= 1;
+                self.line("}");
+            }
+            ShaderKind::Imager => {
+                self.line(&format!("impl {k}::ImagerShader for {ty} {{"));
+                self.ind += 1;
+                self.line("#[inline(always)]");
+                self.line(&format!(
+                    "fn image<F: {k}::ShadingFloat>(&self, e: &mut {k}::Exec<F>, pixel: {k}::ImagerPixel<F>) -> {k}::ImagerPixel<F> {{"
+                ));
+                // The imager's context: `P` the raster position, `Cs`/`Os` the pixel's `Ci`/`Oi`
+                // (as the interpreter and the JIT give it), no lights.
+                self.line(&format!(
+                    "    let mut ctx = {k}::PointContext::new({k}::Globals::imager(&pixel), &[] as &[{k}::LightData]);"
+                ));
+                self.line("    let r = self.run(&mut ctx, e, pixel);");
+                self.line(&format!("    {k}::ImagerPixel {{ P: pixel.P, Ci: r.Ci, Oi: r.Oi, alpha: r.alpha }}"));
+                self.line("}");
+                self.ind -= 1;
+                self.line("}");
+            }
             ShaderKind::Light => {
                 let mut ill = false;
                 let mut sol = false;
@@ -622,7 +666,6 @@ impl<'a> Gen<'a> {
                 self.ind -= 1;
                 self.line("}");
             }
-            _ => {}
         }
     }
 }

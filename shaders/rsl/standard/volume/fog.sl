@@ -3,7 +3,8 @@
  * extinction along the ray segment. Light crossing a segment of length |I| keeps the
  * fraction exp(-|I|/distance) of itself; the rest is replaced by the background colour, and
  * the opacity rises towards 1 by the same fraction.
- * (Not compiled to generated Rust: shaders/build.rs reads shaders/rsl/standard only.)
+ * (shaders/build.rs reads shaders/rsl/standard only, so the shader collection has no volumes;
+ * tests/build.rs generates Rust of it for the cross-check of the three back ends.)
  */
 volume fog(float distance = 1; color background = 0;)
 {
