@@ -6,7 +6,6 @@
 use super::flow::FrameCtx;
 use super::{ident, tri_ty, Gen, GenError, Repr};
 use crate::ir::{Const, Global, Node, ShaderKind, SlotId, SlotKind};
-use crate::span::Span;
 use crate::types::{BaseType, Detail, Type};
 
 impl<'a> Gen<'a> {
