@@ -57,3 +57,59 @@ pub fn compare(a: &ShadeOut<f32>, b: &ShadeOut<f32>) -> Comparison {
     }
     r
 }
+
+/// A displacement, volume or imager shader run as a surface shader, so that the point-set
+/// loops (`anysl_core::points::shade_points`) compare back ends on it as on a surface:
+/// - displacement: `Ci` = the displaced `P`, `Oi` = its `N`;
+/// - volume: on the segment the point's globals give (`P`, `I`, `E`), with
+///   `Ci` = (`s`, `t`, `u`) and `Oi` = (`v`, `v`, `v`) arriving; its `Ci`, `Oi`;
+/// - imager: the pixel at `P` with that `Ci`, `Oi` and `alpha` = `v`; its `Ci`, and
+///   `Oi` with `alpha` in the place of its red component;
+/// - a surface: itself.
+#[derive(Clone, Debug)]
+pub struct StageAsSurface<S> {
+    /// The shader.
+    pub shader: S,
+    /// Which of its entries runs.
+    pub kind: anysl_rsl::ir::ShaderKind,
+}
+
+impl<S: anysl_core::Shader> anysl_core::Shader for StageAsSurface<S> {
+    fn meta(&self) -> anysl_core::ShaderMeta {
+        self.shader.meta()
+    }
+    fn param(&self, name: &str) -> Option<anysl_core::ParamValue> {
+        self.shader.param(name)
+    }
+    fn set_param(&mut self, name: &str, value: &anysl_core::ParamValue) -> Result<(), anysl_core::ParamError> {
+        self.shader.set_param(name, value)
+    }
+}
+
+impl<S> anysl_core::SurfaceShader for StageAsSurface<S>
+where
+    S: anysl_core::SurfaceShader + anysl_core::DisplacementShader + anysl_core::VolumeShader + anysl_core::ImagerShader,
+{
+    fn shade<F: anysl_core::ShadingFloat, C: anysl_core::ShadingContext<F>>(
+        &self,
+        ctx: &mut C,
+        e: &mut anysl_core::Exec<F>,
+    ) -> anysl_core::SurfaceOutput<F> {
+        use anysl_core::{Color, SurfaceOutput};
+        use anysl_rsl::ir::ShaderKind;
+        let g = *ctx.globals();
+        let (ci, oi) = (Color::new(g.s, g.t, g.u), Color::new(g.v, g.v, g.v));
+        match self.kind {
+            ShaderKind::Displacement => {
+                let (p, n) = self.shader.displace(ctx, e);
+                SurfaceOutput { Ci: Color::new(p.x, p.y, p.z), Oi: Color::new(n.x, n.y, n.z) }
+            }
+            ShaderKind::Volume => self.shader.volume(ctx, e, SurfaceOutput { Ci: ci, Oi: oi }),
+            ShaderKind::Imager => {
+                let px = self.shader.image(e, anysl_core::ImagerPixel { P: g.P, Ci: ci, Oi: oi, alpha: g.v });
+                SurfaceOutput { Ci: px.Ci, Oi: Color::new(px.alpha, px.Oi.g, px.Oi.b) }
+            }
+            ShaderKind::Surface | ShaderKind::Light => self.shader.shade(ctx, e),
+        }
+    }
+}

@@ -4,7 +4,7 @@ use anysl_ad::Dual;
 use anysl_core::points::{abs_error_stats, shade_points, shade_points_f64, PointSet, ShadeOut};
 use anysl_core::prelude::*;
 use anysl_core::shader::{ParamError, ParamValue, ShaderMeta};
-use anysl_jit::check::{ABS_FLOOR, MAX_ULPS};
+use anysl_jit::check::{StageAsSurface, ABS_FLOOR, MAX_ULPS};
 use anysl_jit::{compile_with, ir_passes, CompileStats, JitOptions, JitShader, Variant};
 use anysl_rsl::back::interp::{InterpShader, Program};
 use anysl_rsl::ir::ShaderKind;
@@ -81,29 +81,47 @@ pub fn check_file(file: &Path, n: usize) -> Vec<CheckRow> {
                 return vec![row("-", "-", format!("compile error: {}", e.to_string().lines().next().unwrap_or("")))]
             }
         };
-    if compiled.module.kind != ShaderKind::Surface {
-        return vec![row("-", "-", format!("skipped: {:?} shader", compiled.module.kind).to_lowercase())];
+    let kind = compiled.module.kind;
+    if kind == ShaderKind::Light {
+        return vec![row("-", "-", "skipped: light shader".to_string())];
     }
     let jit = match JitShader::new(compiled.module, JitOptions::default()) {
         Ok(j) => j,
         Err(e) => return vec![row("-", "-", e.to_string())],
     };
+    // Displacement, volume and imager shaders through their own entries, as surfaces.
+    let stage = (kind != ShaderKind::Surface).then(|| {
+        (StageAsSurface { shader: jit.clone(), kind }, StageAsSurface { shader: jit.interp().clone(), kind })
+    });
     let set = PointSet::random(n, 0x5eed_0005);
     let lights = table1_lights();
-    let aot = aot_for(&stem);
+    let aot = if stage.is_none() { aot_for(&stem) } else { None };
     let oracle_name = if aot.is_some() { "aot" } else { "interp" };
     let mut rows = Vec::new();
     macro_rules! pair {
         ($F:ty, $v:expr, $label:expr) => {{
-            match jit.variant($v) {
+            let compiled = match &stage {
+                Some((j, _)) => j.shader.variant($v),
+                None => jit.variant($v),
+            };
+            match compiled {
                 Err(e) => rows.push(row($label, oracle_name, e)),
                 Ok(_) => {
                     let mut a = ShadeOut::new(set.len());
                     let mut b = ShadeOut::new(set.len());
-                    shade_points::<$F, JitShader, Light>(&jit, &lights, &set, &mut a);
-                    match &aot {
-                        Some(s) => shade_points::<$F, Surface, Light>(s, &lights, &set, &mut b),
-                        None => shade_points::<$F, InterpShader, Light>(jit.interp(), &lights, &set, &mut b),
+                    match (&stage, &aot) {
+                        (Some((j, i)), _) => {
+                            shade_points::<$F, _, Light>(j, &lights, &set, &mut a);
+                            shade_points::<$F, _, Light>(i, &lights, &set, &mut b);
+                        }
+                        (None, Some(s)) => {
+                            shade_points::<$F, JitShader, Light>(&jit, &lights, &set, &mut a);
+                            shade_points::<$F, Surface, Light>(s, &lights, &set, &mut b);
+                        }
+                        (None, None) => {
+                            shade_points::<$F, JitShader, Light>(&jit, &lights, &set, &mut a);
+                            shade_points::<$F, InterpShader, Light>(jit.interp(), &lights, &set, &mut b);
+                        }
                     }
                     let anysl_jit::check::Comparison { max_ulps: mu, max_abs: ma, mismatches: bad } =
                         anysl_jit::check::compare(&a, &b);
@@ -122,10 +140,13 @@ pub fn check_file(file: &Path, n: usize) -> Vec<CheckRow> {
     rows
 }
 
-/// The default files: every shader in `shaders/rsl` and the conformance suite.
+/// The default files: every shader in `shaders/rsl` (with the standard volumes and imager),
+/// `scenes/` and the conformance suite.
 pub fn default_files() -> Vec<PathBuf> {
     let mut files = Vec::new();
-    for dir in [rsl_dir(), rsl_dir().join("standard"), conformance_dir()] {
+    let scenes = PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes"));
+    let standard = rsl_dir().join("standard");
+    for dir in [rsl_dir(), standard.clone(), standard.join("volume"), standard.join("imager"), scenes, conformance_dir()] {
         if let Ok(rd) = std::fs::read_dir(&dir) {
             let mut v: Vec<PathBuf> =
                 rd.flatten().map(|e| e.path()).filter(|p| p.extension().is_some_and(|x| x == "sl")).collect();
