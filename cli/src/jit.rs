@@ -90,9 +90,8 @@ pub fn check_file(file: &Path, n: usize) -> Vec<CheckRow> {
         Err(e) => return vec![row("-", "-", e.to_string())],
     };
     // Displacement, volume and imager shaders through their own entries, as surfaces.
-    let stage = (kind != ShaderKind::Surface).then(|| {
-        (StageAsSurface { shader: jit.clone(), kind }, StageAsSurface { shader: jit.interp().clone(), kind })
-    });
+    let stage = (kind != ShaderKind::Surface)
+        .then(|| (StageAsSurface { shader: jit.clone(), kind }, StageAsSurface { shader: jit.interp().clone(), kind }));
     let set = PointSet::random(n, 0x5eed_0005);
     let lights = table1_lights();
     let aot = if stage.is_none() { aot_for(&stem) } else { None };
@@ -146,7 +145,9 @@ pub fn default_files() -> Vec<PathBuf> {
     let mut files = Vec::new();
     let scenes = PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes"));
     let standard = rsl_dir().join("standard");
-    for dir in [rsl_dir(), standard.clone(), standard.join("volume"), standard.join("imager"), scenes, conformance_dir()] {
+    for dir in
+        [rsl_dir(), standard.clone(), standard.join("volume"), standard.join("imager"), scenes, conformance_dir()]
+    {
         if let Ok(rd) = std::fs::read_dir(&dir) {
             let mut v: Vec<PathBuf> =
                 rd.flatten().map(|e| e.path()).filter(|p| p.extension().is_some_and(|x| x == "sl")).collect();
