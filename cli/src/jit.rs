@@ -140,14 +140,15 @@ pub fn check_file(file: &Path, n: usize) -> Vec<CheckRow> {
 }
 
 /// The default files: every shader in `shaders/rsl` (with the standard volumes and imager),
-/// `scenes/` and the conformance suite.
+/// `scenes/`, the conformance suite and the volume and imager programs of
+/// `tests/data/rsl/stages`.
 pub fn default_files() -> Vec<PathBuf> {
     let mut files = Vec::new();
     let scenes = PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes"));
+    let stages = PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../tests/data/rsl/stages"));
     let standard = rsl_dir().join("standard");
-    for dir in
-        [rsl_dir(), standard.clone(), standard.join("volume"), standard.join("imager"), scenes, conformance_dir()]
-    {
+    let dirs = [rsl_dir(), standard.clone(), standard.join("volume"), standard.join("imager"), scenes];
+    for dir in dirs.into_iter().chain([conformance_dir(), stages]) {
         if let Ok(rd) = std::fs::read_dir(&dir) {
             let mut v: Vec<PathBuf> =
                 rd.flatten().map(|e| e.path()).filter(|p| p.extension().is_some_and(|x| x == "sl")).collect();
