@@ -69,9 +69,12 @@ enum Command {
 enum JitCommand {
     /// Cross-check: JIT f32 / 8-wide / dual against the monomorphized shader (hand-written
     /// generic Rust for the Table-1 shaders, the interpreter at the same type otherwise) on
-    /// random points; max error in ulps. Default files: shaders/rsl and the conformance suite.
+    /// random points; max error in ulps. Surface, displacement, volume and imager shaders (each
+    /// through its own entry); light shaders are skipped. Default files: shaders/rsl (with the
+    /// standard volumes and imager), scenes/, the conformance suite and tests/data/rsl/stages.
     Check {
-        /// `.sl` files (default: every shader in shaders/rsl and tests/data/rsl/conformance).
+        /// `.sl` files (default: every shader in shaders/rsl, shaders/rsl/standard/{volume,imager},
+        /// scenes/, tests/data/rsl/conformance and tests/data/rsl/stages).
         files: Vec<PathBuf>,
         /// Random points per comparison.
         #[arg(long, default_value_t = 10000)]
