@@ -772,6 +772,23 @@ macro_rules! return_as_variant {
 }
 use return_as_variant;
 
+/// Returns `$body` with `$cs` the compiled code of the variant for `$F` and `$G` its
+/// [`JitFloat`], when there is such a variant and it compiles; falls through otherwise (to
+/// the interpreter, in every caller).
+macro_rules! return_compiled {
+    ($self:ident, $F:ty, |$cs:ident, $G:ident| $body:expr) => {
+        if let Some(v) = variant_of::<$F>() {
+            if let Ok($cs) = $self.variant_ref(v) {
+                return_as_variant!(v, $F, |$G| $body);
+                unreachable!(
+                    "variant_of::<{}>() named {v:?}, a type of other lanes or size",
+                    core::any::type_name::<$F>()
+                );
+            }
+        }
+    };
+}
+
 /// Whether `F` may be `G` (`variant_of` decides which it is): the same lanes and size.
 const fn may_be<F: ShadingFloat, G: JitFloat>() -> bool {
     F::LANES == G::LANES && core::mem::size_of::<F>() == core::mem::size_of::<G>()
@@ -785,15 +802,7 @@ impl SurfaceShader for JitShader {
     }
 
     fn shade<F: ShadingFloat, C: ShadingContext<F>>(&self, ctx: &mut C, e: &mut Exec<F>) -> SurfaceOutput<F> {
-        if let Some(v) = variant_of::<F>() {
-            if let Ok(cs) = self.variant_ref(v) {
-                return_as_variant!(v, F, |G| self.run::<F, C, G>(cs, ctx, e));
-                unreachable!(
-                    "variant_of::<{}>() named {v:?}, a type of other lanes or size",
-                    core::any::type_name::<F>()
-                );
-            }
-        }
+        return_compiled!(self, F, |cs, G| self.run::<F, C, G>(cs, ctx, e));
         self.interp.shade(ctx, e)
     }
 }
@@ -802,15 +811,7 @@ impl DisplacementShader for JitShader {
     /// The compiled displacement (`P`, `N` as it leaves them) for the variant of `F`; the
     /// interpreter for other float types.
     fn displace<F: ShadingFloat, C: ShadingContext<F>>(&self, ctx: &mut C, e: &mut Exec<F>) -> (Vec3<F>, Vec3<F>) {
-        if let Some(v) = variant_of::<F>() {
-            if let Ok(cs) = self.variant_ref(v) {
-                return_as_variant!(v, F, |G| self.run_displace::<F, C, G>(cs, ctx, e));
-                unreachable!(
-                    "variant_of::<{}>() named {v:?}, a type of other lanes or size",
-                    core::any::type_name::<F>()
-                );
-            }
-        }
+        return_compiled!(self, F, |cs, G| self.run_displace::<F, C, G>(cs, ctx, e));
         self.interp.displace(ctx, e)
     }
 }
@@ -824,15 +825,7 @@ impl VolumeShader for JitShader {
         e: &mut Exec<F>,
         entering: SurfaceOutput<F>,
     ) -> SurfaceOutput<F> {
-        if let Some(v) = variant_of::<F>() {
-            if let Ok(cs) = self.variant_ref(v) {
-                return_as_variant!(v, F, |G| self.run_volume::<F, C, G>(cs, ctx, e, entering));
-                unreachable!(
-                    "variant_of::<{}>() named {v:?}, a type of other lanes or size",
-                    core::any::type_name::<F>()
-                );
-            }
-        }
+        return_compiled!(self, F, |cs, G| self.run_volume::<F, C, G>(cs, ctx, e, entering));
         self.interp.volume(ctx, e, entering)
     }
 }
@@ -842,15 +835,7 @@ impl ImagerShader for JitShader {
     /// `P` its raster position, `Cs`, `Os` its `Ci`, `Oi`, as in the interpreter); the
     /// interpreter for other float types.
     fn image<F: ShadingFloat>(&self, e: &mut Exec<F>, pixel: ImagerPixel<F>) -> ImagerPixel<F> {
-        if let Some(v) = variant_of::<F>() {
-            if let Ok(cs) = self.variant_ref(v) {
-                return_as_variant!(v, F, |G| self.run_imager::<F, G>(cs, e, pixel));
-                unreachable!(
-                    "variant_of::<{}>() named {v:?}, a type of other lanes or size",
-                    core::any::type_name::<F>()
-                );
-            }
-        }
+        return_compiled!(self, F, |cs, G| self.run_imager::<F, G>(cs, e, pixel));
         self.interp.image(e, pixel)
     }
 }
@@ -863,15 +848,7 @@ impl LightShader for JitShader {
     /// The compiled light for the variant of `F` (`Cl` stays zero outside every `illuminate`
     /// cone, as in the interpreter); the interpreter for other float types.
     fn light_in<F: ShadingFloat>(&self, e: &mut Exec<F>, ps: Vec3<F>, spaces: &Spaces) -> LightOutput<F> {
-        if let Some(v) = variant_of::<F>() {
-            if let Ok(cs) = self.variant_ref(v) {
-                return_as_variant!(v, F, |G| self.run_light::<F, G>(cs, e, ps, spaces));
-                unreachable!(
-                    "variant_of::<{}>() named {v:?}, a type of other lanes or size",
-                    core::any::type_name::<F>()
-                );
-            }
-        }
+        return_compiled!(self, F, |cs, G| self.run_light::<F, G>(cs, e, ps, spaces));
         self.interp.light_in(e, ps, spaces)
     }
 

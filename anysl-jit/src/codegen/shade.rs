@@ -257,14 +257,7 @@ impl<'c> Cg<'c, '_> {
         };
         let n = g.ty().base.components();
         let gp = self.st().g.into_pointer_value();
-        let vt = self.vt();
-        let ld = |fo: u64| {
-            let p = unsafe { self.b.build_gep(gp, &[self.cx.i64_type().const_int(fo, false)], "") }.expect("gep");
-            let p = self.b.build_pointer_cast(p, self.ptr_ty(vt), "").expect("cast");
-            let v = self.b.build_load(p, "").expect("load");
-            v.as_instruction_value().map(|i| i.set_alignment(4));
-            v
-        };
+        let ld = |fo: u64| self.load_lanes(gp, fo);
         let [dx, dy] = self.layout.dual.map(u64::from);
         (0..n)
             .map(|k| {
@@ -276,16 +269,18 @@ impl<'c> Cg<'c, '_> {
             .collect()
     }
 
+    /// The lanes of one value at float offset `fo` from `base` (4-byte aligned).
+    fn load_lanes(&self, base: PointerValue<'c>, fo: u64) -> BasicValueEnum<'c> {
+        let p = unsafe { self.b.build_gep(base, &[self.cx.i64_type().const_int(fo, false)], "") }.expect("gep");
+        let p = self.b.build_pointer_cast(p, self.ptr_ty(self.vt()), "").expect("cast");
+        let v = self.b.build_load(p, "").expect("load");
+        v.as_instruction_value().map(|i| i.set_alignment(4));
+        v
+    }
+
     /// Value `idx` of the output buffer (as [`Cg::write_out`] writes it), full representation.
     fn read_out(&self, out: PointerValue<'c>, idx: usize) -> S<'c> {
-        let vt = self.vt();
-        let ld = |fo: u64| {
-            let p = unsafe { self.b.build_gep(out, &[self.cx.i64_type().const_int(fo, false)], "") }.expect("gep");
-            let p = self.b.build_pointer_cast(p, self.ptr_ty(vt), "").expect("cast");
-            let v = self.b.build_load(p, "").expect("load");
-            v.as_instruction_value().map(|i| i.set_alignment(4));
-            v
-        };
+        let ld = |fo: u64| self.load_lanes(out, fo);
         let base = idx as u64 * self.stride() as u64;
         let lanes = u64::from(self.t.lanes);
         let d = self.t.dual.then(|| (ld(base + lanes), ld(base + 2 * lanes)));

@@ -206,23 +206,11 @@ impl WorkloadScene {
     #[inline(always)]
     #[must_use]
     pub fn globals<F: ShadingFloat>(&self, i: usize) -> Globals<F> {
-        let zero = F::c(0.0);
         let mut g = Globals {
-            P: Vec3::zero(),
-            N: Vec3::zero(),
-            Ng: Vec3::zero(),
-            I: Vec3::zero(),
             E: Vec3::from_array(EYE),
-            s: zero,
-            t: zero,
-            u: zero,
-            v: zero,
-            du: zero,
-            dv: zero,
-            dPdu: Vec3::zero(),
-            dPdv: Vec3::zero(),
             Cs: Color::c(1.0, 1.0, 1.0),
             Os: Color::c(1.0, 1.0, 1.0),
+            ..Globals::at(Vec3::zero())
         };
         self.set_points_whole(&mut g, i);
         g
